@@ -1,0 +1,32 @@
+# Helpers shared by every target of the build.
+
+function(loom_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor)
+  if(LOOM_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# loom_add_test(NAME name SOURCES a.cpp ... [LABELS unit verification scene stress] [LIBS ...])
+function(loom_add_test)
+  cmake_parse_arguments(T "" "NAME" "SOURCES;LABELS;LIBS" ${ARGN})
+  add_executable(${T_NAME} ${T_SOURCES})
+  target_link_libraries(${T_NAME} PRIVATE loom_testing GTest::gtest_main ${T_LIBS})
+  loom_set_warnings(${T_NAME})
+  gtest_discover_tests(${T_NAME}
+    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+    PROPERTIES LABELS "${T_LABELS}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# loom_add_benchmark(NAME bench_x SOURCES bench_x.cpp [LIBS ...]): also a ctest smoke run (label perf).
+function(loom_add_benchmark)
+  cmake_parse_arguments(B "" "NAME" "SOURCES;LIBS" ${ARGN})
+  add_executable(${B_NAME} ${B_SOURCES})
+  target_link_libraries(${B_NAME} PRIVATE benchmark::benchmark ${B_LIBS})
+  loom_set_warnings(${B_NAME})
+  if(LOOM_BUILD_TESTS)
+    add_test(NAME ${B_NAME}_smoke COMMAND ${B_NAME} --benchmark_min_time=0.01 --benchmark_filter=/1024/|/1000/|/16/)
+    set_tests_properties(${B_NAME}_smoke PROPERTIES LABELS "perf_smoke" WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  endif()
+endfunction()

@@ -1,0 +1,147 @@
+// The loom program: run, check, info and schema (DESIGN §5). Exit codes: 0 success, 1 the run failed,
+// 2 bad input (scene or command line).
+#include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/info.h>
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/core/errors.hpp"
+#include "engine/io/files.hpp"
+#include "engine/io/run_report.hpp"
+#include "engine/methods/method.hpp"
+#include "engine/scene/scene_loader.hpp"
+#include "engine/scene/schema.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  loom run SCENE [--out DIR] [--threads N] [--set key.path=value]... [--quiet]\n"
+    "  loom check SCENE [--set key.path=value]...   validate the scene and build its mesh, do not run\n"
+    "  loom info SCENE [--set key.path=value]...    print the step graph and the store sizes\n"
+    "  loom schema [--markdown]                      print every scene key with type, default and meaning\n"
+    "  loom --version\n"
+    "--set addresses arrays of tables by index or by name: body[0].mesh.divisions=[16,16],\n"
+    "material[rubber].nu=0.3. Exit codes: 0 success, 1 the run failed, 2 bad input.\n";
+
+struct Args {
+  std::string command, scene, out;
+  std::vector<std::string> sets;
+  int threads = 0;
+  bool quiet = false, markdown = false;
+};
+
+Args parse(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> v(argv + 1, argv + argc);
+  LOOM_CHECK(!v.empty(), loom::InputError, "missing command\n" << kUsage);
+  a.command = v[0];
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const std::string& s = v[i];
+    auto value = [&](const char* opt) {
+      LOOM_CHECK(i + 1 < v.size(), loom::InputError, opt << " needs a value\n" << kUsage);
+      return v[++i];
+    };
+    if (s == "--out") a.out = value("--out");
+    else if (s == "--set") a.sets.push_back(value("--set"));
+    else if (s.rfind("--set=", 0) == 0) a.sets.push_back(s.substr(6));
+    else if (s == "--threads") {
+      const std::string n = value("--threads");
+      try {
+        std::size_t used = 0;
+        a.threads = std::stoi(n, &used);
+        LOOM_CHECK(used == n.size() && a.threads >= 1, loom::InputError, "");
+      } catch (const std::exception&) {
+        throw loom::InputError("--threads needs a positive integer, got '" + n + "'");
+      }
+    } else if (s == "--quiet") a.quiet = true;
+    else if (s == "--markdown") a.markdown = true;
+    else if (!s.empty() && s[0] == '-') throw loom::InputError("unknown option " + s + "\n" + kUsage);
+    else if (a.scene.empty()) a.scene = s;
+    else throw loom::InputError("unexpected argument " + s + "\n" + kUsage);
+  }
+  return a;
+}
+
+int run(const Args& a) {
+  std::optional<oneapi::tbb::global_control> limit;
+  if (a.threads > 0) limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(a.threads));
+  const int threads = int(oneapi::tbb::global_control::active_value(oneapi::tbb::global_control::max_allowed_parallelism));
+
+  const loom::SceneSpec scene = loom::load_scene(a.scene, a.sets);
+  loom::RunOptions options;
+  options.output_directory = a.out.empty() ? scene.output.directory : a.out;
+  options.threads = threads;
+  options.progress = !a.quiet;
+  options.log = &std::cerr;
+  auto method = loom::make_method_run(scene, options);
+  loom::RunSummary summary = method->run();
+  summary.threads = threads;
+
+  const loom::RunIdentity id{LOOM_VERSION, a.scene, scene.scene.name, scene.text_hash, "fem"};
+  loom::write_file_atomic(options.output_directory + "/run.json", loom::run_json(id, summary));
+  {
+    std::ostringstream json;
+    method->timers().write_json(json, summary.wall_seconds);
+    loom::write_file_atomic(options.output_directory + "/timings.json", json.str());
+    if (!a.quiet) method->timers().print_table(std::cout, summary.wall_seconds);
+  }
+  if (!summary.converged) {
+    std::cerr << "loom: the run failed: " << summary.failure << "\n"
+              << "loom: last converged step " << summary.last_converged_step << " (t = " << summary.last_converged_time
+              << "); the output written so far is in " << options.output_directory << "\n";
+    return 1;
+  }
+  if (!a.quiet)
+    std::cout << "loom: " << summary.steps_done << " steps, " << summary.newton_iterations << " Newton iterations, "
+              << summary.wall_seconds << " s wall; output in " << options.output_directory << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Args a = parse(argc, argv);
+    if (a.command == "--version" || a.command == "version") {
+      std::cout << "loom " << LOOM_VERSION << "\n";
+      return 0;
+    }
+    if (a.command == "--help" || a.command == "help" || a.command == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (a.command == "schema") {
+      loom::print_schema(std::cout, a.markdown);
+      return 0;
+    }
+    LOOM_CHECK(a.command == "run" || a.command == "check" || a.command == "info", loom::InputError,
+               "unknown command '" << a.command << "'\n" << kUsage);
+    LOOM_CHECK(!a.scene.empty(), loom::InputError, "missing SCENE\n" << kUsage);
+    if (a.command == "run") return run(a);
+    const loom::SceneSpec scene = loom::load_scene(a.scene, a.sets);
+    loom::RunOptions options;
+    options.write_files = false;
+    options.progress = false;
+    auto method = loom::make_method_run(scene, options);
+    if (a.command == "info") method->describe(std::cout);
+    else std::cout << a.scene << ": ok\n";
+    return 0;
+  } catch (const loom::InputError& e) {
+    std::cerr << e.what();
+    if (std::string(e.what()).back() != '\n') std::cerr << "\n";
+    return 2;
+  } catch (const loom::RunError& e) {
+    std::cerr << "loom: the run failed: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "loom: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,75 @@
+#include "engine/drivers/newton.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace loom {
+
+NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& timers) {
+  NewtonReport report;
+  auto fail = [&](const std::string& why) {
+    report.failure = why;
+    return report;
+  };
+  auto assemble = [&]() {
+    ScopedTimer t(timers, "newton/assemble");
+    return p.assemble(true);
+  };
+
+  if (!assemble()) return fail("a cell is inverted at the start of the step");
+  const double r0 = p.residual_norm();
+  if (!std::isfinite(r0)) return fail("the initial residual is not finite");
+  report.residuals.push_back(r0);
+  double r = r0;
+  auto converged = [&](double increment) {
+    if (p.prescribed_pending()) return false;
+    return r <= s.residual_absolute || r <= s.residual_relative * r0 ||
+           increment <= s.increment_relative * p.step_change_norm();
+  };
+  if (r <= s.residual_absolute && !p.prescribed_pending()) {
+    report.converged = true;
+    return report;
+  }
+
+  for (int it = 1; it <= s.max_iterations; ++it) {
+    bool solved;
+    {
+      ScopedTimer t(timers, "newton/solve");
+      solved = p.solve();
+    }
+    if (!solved) return fail("the tangent matrix is singular");
+    report.iterations = it;
+    double step = 1.0;
+    {
+      ScopedTimer t(timers, "newton/update");
+      p.update(step);
+    }
+    bool admissible = assemble();
+    double r_new = admissible ? p.residual_norm() : INFINITY;
+    if (s.line_search) {
+      for (int k = 0; k < 10 && (!admissible || !(r_new <= (1.0 - 1e-4 * step) * r)); ++k) {
+        {
+          ScopedTimer t(timers, "newton/update");
+          p.update(-0.5 * step);  // back to half the previous trial step
+        }
+        step *= 0.5;
+        admissible = assemble();
+        r_new = admissible ? p.residual_norm() : INFINITY;
+      }
+    }
+    if (!admissible) return fail("a cell inverted during the Newton iterations");
+    if (!std::isfinite(r_new)) return fail("the residual is not finite");
+    r = r_new;
+    report.residuals.push_back(r);
+    if (converged(step * p.increment_norm())) {
+      report.converged = true;
+      return report;
+    }
+    if (r > 1e12 * std::max(r0, s.residual_absolute)) return fail("the residual diverges");
+  }
+  std::ostringstream os;
+  os << "no convergence in " << s.max_iterations << " iterations (residual " << r << ", first " << r0 << ")";
+  return fail(os.str());
+}
+
+}  // namespace loom

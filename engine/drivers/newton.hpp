@@ -1,0 +1,49 @@
+// Newton-Raphson on a nonlinear problem given by its operations (seed 000 §2: the residual (4) and its
+// linearisation (13)). Converged when the residual norm is below residual_absolute, or below
+// residual_relative times the first residual of the step, or when the increment stagnates at round-off
+// (|du| <= increment_relative |u - u_n|), and no prescribed dof still lags its target. An optional
+// backtracking line search halves the step while the residual does not decrease (Armijo, c = 1e-4) or
+// the iterate is inadmissible (an inverted cell). Failure is reported, never thrown: the caller cuts the
+// step back.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/timing/timers.hpp"
+
+namespace loom {
+
+struct NewtonSettings {
+  int max_iterations = 25;
+  double residual_relative = 1e-8;
+  double residual_absolute = 1e-10;
+  double increment_relative = 1e-12;
+  bool line_search = false;
+};
+
+class NonlinearProblem {
+ public:
+  virtual ~NonlinearProblem() = default;
+  // Residual (and tangent) at the current iterate; false if the iterate is inadmissible (J <= 0).
+  virtual bool assemble(bool with_tangent) = 0;
+  virtual double residual_norm() const = 0;
+  // Solves tangent * du = -residual; false if the tangent is singular.
+  virtual bool solve() = 0;
+  // iterate += step * du
+  virtual void update(double step) = 0;
+  virtual double increment_norm() const = 0;   // |du| on the free dofs
+  virtual double step_change_norm() const = 0;  // |u - u_n|
+  virtual bool prescribed_pending() const = 0;  // some prescribed dof has not reached its target
+};
+
+struct NewtonReport {
+  bool converged = false;
+  int iterations = 0;               // linear solves
+  std::vector<double> residuals;    // residual norm after each assembly that was accepted
+  std::string failure;              // why it did not converge
+};
+
+NewtonReport solve_newton(NonlinearProblem& problem, const NewtonSettings& settings, Timers& timers);
+
+}  // namespace loom

@@ -1,0 +1,23 @@
+// What a finished (or failed) run reports: written to run.json and printed at exit.
+#pragma once
+
+#include <string>
+
+namespace loom {
+
+struct RunSummary {
+  bool converged = false;           // every step converged
+  int steps_requested = 0;
+  int steps_done = 0;               // scene steps completed
+  int last_converged_step = 0;
+  double last_converged_time = 0.0;
+  long long newton_iterations = 0;  // linear solves over the run
+  int cutbacks = 0;
+  double wall_seconds = 0.0;
+  std::string failure;              // empty when converged
+  std::string linear_solver;        // back-end in use at the end
+  long long dofs = 0, cells = 0;
+  int threads = 0;
+};
+
+}  // namespace loom

@@ -1,0 +1,17 @@
+// Outcome of the Newton solve of the current (sub)step: written by the solve node, read by the nodes
+// that may only run on a converged state (commit, probes, output) and by the time loop.
+#pragma once
+
+#include <string>
+
+namespace loom {
+
+struct StepStatus {
+  bool converged = false;
+  int iterations = 0;       // linear solves of this (sub)step
+  int step_iterations = 0;  // summed over the sub-steps of the current scene step
+  long long total_iterations = 0;
+  std::string failure;
+};
+
+}  // namespace loom

@@ -1,0 +1,49 @@
+#include "engine/drivers/time_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace loom {
+
+TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext& ctx, StepGraph& graph,
+                             StepStatus& status, const TimeLoopCallbacks& callbacks) {
+  TimeLoopResult result;
+  double t = ctx.t;
+  for (int step = 1; step <= steps; ++step) {
+    const double t_end = double(step) * dt;
+    double h = dt;
+    int halvings = 0;
+    status.step_iterations = 0;
+    while (t < t_end) {
+      const double remaining = t_end - t;
+      const bool last = h >= remaining * (1.0 - 1e-9);
+      ctx.step = step;
+      ctx.dt = last ? remaining : h;
+      ctx.t = last ? t_end : t + h;
+      ctx.step_end = last;
+      graph.run();
+      if (status.converged) {
+        t = ctx.t;
+        result.last_converged_time = t;
+        continue;
+      }
+      if (callbacks.cut_back) callbacks.cut_back(ctx, status);
+      if (halvings == max_cutbacks) {
+        result.failed_step = step;
+        result.failed_dt = ctx.dt;
+        result.failure = status.failure;
+        ctx.t = t;
+        return result;
+      }
+      ++halvings;
+      ++result.cutbacks;
+      h = 0.5 * ctx.dt;
+    }
+    result.last_converged_step = step;
+    if (callbacks.step_done) callbacks.step_done(ctx, status);
+  }
+  result.completed = true;
+  return result;
+}
+
+}  // namespace loom

@@ -1,0 +1,32 @@
+#include "engine/io/files.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/errors.hpp"
+
+namespace loom {
+
+std::string temporary_name(const std::string& path) { return path + ".tmp"; }
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  const std::string tmp = temporary_name(path);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    LOOM_CHECK(out, RunError, "cannot write " << tmp);
+    out << content;
+    out.flush();
+    LOOM_CHECK(out, RunError, "cannot write " << tmp);
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  LOOM_CHECK(!ec, RunError, "cannot rename " << tmp << " to " << path << ": " << ec.message());
+}
+
+void make_directories(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  LOOM_CHECK(!ec, RunError, "cannot create the output directory " << path << ": " << ec.message());
+}
+
+}  // namespace loom

@@ -1,0 +1,15 @@
+// Files are written to a temporary name and renamed, so that a killed run never leaves a corrupt file
+// (DESIGN §6).
+#pragma once
+
+#include <string>
+
+namespace loom {
+
+// Writes `content` to `path` atomically (temporary file in the same directory, then rename).
+void write_file_atomic(const std::string& path, const std::string& content);
+// Creates the directory and its parents; throws RunError if it cannot.
+void make_directories(const std::string& path);
+std::string temporary_name(const std::string& path);
+
+}  // namespace loom

@@ -1,0 +1,37 @@
+#include "engine/io/progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace loom {
+
+Progress::Progress(int total_steps, bool enabled)
+    : total_(total_steps), enabled_(enabled), tty_(isatty(fileno(stderr)) != 0),
+      start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+void Progress::update(int step, double time, int newton_iterations) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double since = std::chrono::duration<double>(now - last_).count();
+  if (elapsed < 3.0 || since < (tty_ ? 0.25 : 10.0)) return;
+  last_ = now;
+  const double eta = step > 0 ? elapsed * (total_ - step) / step : 0.0;
+  std::ostringstream os;
+  os.precision(4);
+  os << "step " << step << "/" << total_ << "  t = " << time << "  newton " << newton_iterations << "  elapsed "
+     << int(elapsed) << " s  remaining ~" << int(eta) << " s";
+  if (tty_) std::cerr << "\r" << os.str() << "\033[K" << std::flush;
+  else std::cerr << os.str() << std::endl;
+  shown_ = true;
+}
+
+void Progress::finish() {
+  if (enabled_ && shown_ && tty_) std::cerr << "\n";
+  shown_ = false;
+}
+
+}  // namespace loom

@@ -1,0 +1,49 @@
+// Linear solver back-ends behind one interface (DESIGN §8: a distributed back-end must fit here later).
+// The symbolic analysis is kept while the sparsity pattern is unchanged (SparsePattern::version).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "engine/linalg/sparse_pattern.hpp"
+
+namespace loom {
+
+enum class LinearSolverKind { automatic, cholmod, umfpack };
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual const char* name() const = 0;
+  virtual void analyze(const SparseMatrix& A) = 0;      // symbolic
+  virtual bool factorize(const SparseMatrix& A) = 0;    // numeric; false: singular / not SPD
+  virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+};
+
+std::unique_ptr<LinearSolver> make_cholmod_solver();  // supernodal LL^T, SPD only
+std::unique_ptr<LinearSolver> make_umfpack_solver();  // general sparse LU
+
+// The solver a run uses: picks the back-end, redoes the symbolic analysis only when the pattern
+// changes, and with `automatic` switches from CHOLMOD to UMFPACK for good the first time a matrix is
+// not positive definite.
+class LinearSolve {
+ public:
+  explicit LinearSolve(LinearSolverKind kind);
+  ~LinearSolve();
+  // Factorizes pattern.matrix (analysing it first if its pattern is new); false if it is singular.
+  bool factorize(const SparsePattern& pattern);
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  std::string backend() const;
+  int analyses() const { return analyses_; }
+  int factorizations() const { return factorizations_; }
+
+ private:
+  LinearSolverKind kind_;
+  std::unique_ptr<LinearSolver> solver_;
+  std::uint64_t analysed_version_ = 0;
+  int analyses_ = 0, factorizations_ = 0;
+};
+
+}  // namespace loom

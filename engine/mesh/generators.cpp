@@ -1,0 +1,126 @@
+#include "engine/mesh/generators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/boundary_edges.hpp"
+
+namespace loom {
+namespace {
+
+// Triangulates the strip between two rows of nodes that both span the same x-interval, by merging the
+// rows in order of x (a "zipper"). Where both rows advance at the same x (a square), `diag_up` picks the
+// diagonal: true cuts lower-left to upper-right.
+void zip_rows(const std::vector<Index>& lower, const std::vector<Index>& upper, const std::vector<Vec2>& X,
+              int row, GridPattern pattern, std::vector<Index>& tris) {
+  std::size_t i = 0, j = 0;
+  int square = 0;
+  while (i + 1 < lower.size() || j + 1 < upper.size()) {
+    bool advance_lower;
+    if (i + 1 == lower.size()) {
+      advance_lower = false;
+    } else if (j + 1 == upper.size()) {
+      advance_lower = true;
+    } else {
+      const double xl = X[lower[i + 1]].x(), xu = X[upper[j + 1]].x();
+      const double tol = 1e-12 * (1.0 + std::abs(xl));
+      if (std::abs(xl - xu) <= tol) {
+        bool diag_up = pattern != GridPattern::alternating || (square + row) % 2 == 0;
+        // The square (lower[i], lower[i+1], upper[j+1], upper[j]) becomes two triangles.
+        if (diag_up) {
+          tris.insert(tris.end(), {lower[i], lower[i + 1], upper[j + 1]});
+          tris.insert(tris.end(), {lower[i], upper[j + 1], upper[j]});
+        } else {
+          tris.insert(tris.end(), {lower[i], lower[i + 1], upper[j]});
+          tris.insert(tris.end(), {lower[i + 1], upper[j + 1], upper[j]});
+        }
+        ++i, ++j, ++square;
+        continue;
+      }
+      advance_lower = xl < xu;
+    }
+    if (advance_lower) {
+      tris.insert(tris.end(), {lower[i], lower[i + 1], upper[j]});
+      ++i;
+    } else {
+      tris.insert(tris.end(), {lower[i], upper[j + 1], upper[j]});
+      ++j;
+    }
+  }
+}
+
+// Node rows of a structured grid on the unit square; shifted rows get half-edge offsets and end points.
+MeshData unit_grid(int nx, int ny, GridPattern pattern) {
+  LOOM_ASSERT(nx >= 1 && ny >= 1, "grid divisions must be positive");
+  MeshData mesh;
+  std::vector<std::vector<Index>> rows(static_cast<std::size_t>(ny) + 1);
+  for (int r = 0; r <= ny; ++r) {
+    const double y = double(r) / ny;
+    const bool shifted = pattern == GridPattern::shifted && r % 2 == 1;
+    auto add = [&](double x) {
+      rows[std::size_t(r)].push_back(Index(mesh.X.size()));
+      mesh.X.emplace_back(x, y);
+    };
+    if (shifted) {
+      add(0.0);
+      for (int i = 0; i < nx; ++i) add((i + 0.5) / nx);
+      add(1.0);
+    } else {
+      for (int i = 0; i <= nx; ++i) add(double(i) / nx);
+    }
+  }
+  for (int r = 0; r < ny; ++r) zip_rows(rows[std::size_t(r)], rows[std::size_t(r) + 1], mesh.X, r, pattern, mesh.triangles);
+  return mesh;
+}
+
+}  // namespace
+
+MeshData generate_rectangle(const RectangleSpec& spec) {
+  MeshData mesh = unit_grid(spec.nx, spec.ny, spec.pattern);
+  for (auto& p : mesh.X) p = spec.origin + p.cwiseProduct(spec.size);
+  return mesh;
+}
+
+MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern) {
+  MeshData mesh = unit_grid(nx, ny, pattern);
+  // Bilinear map of the unit square onto the trapezoid: xi along x (clamped edge at xi = 0), eta along y.
+  const Vec2 c00(0, 0), c10(48, 44), c11(48, 60), c01(0, 44);
+  for (auto& p : mesh.X) {
+    const double xi = p.x(), eta = p.y();
+    p = (1 - xi) * (1 - eta) * c00 + xi * (1 - eta) * c10 + xi * eta * c11 + (1 - xi) * eta * c01;
+  }
+  return mesh;
+}
+
+void distort_interior_nodes(MeshData& mesh, double fraction, std::uint64_t seed) {
+  if (fraction <= 0.0) return;
+  const Index n = Index(mesh.X.size());
+  std::vector<char> on_boundary(std::size_t(n), 0);
+  for (const auto& e : boundary_edges(mesh.triangles, 3)) on_boundary[std::size_t(e.a)] = on_boundary[std::size_t(e.b)] = 1;
+  // Local edge length: shortest edge at the node, so that no triangle can invert for fraction < 0.5.
+  std::vector<double> h(std::size_t(n), std::numeric_limits<double>::max());
+  for (Index t = 0; t < mesh.n_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = mesh.triangles[std::size_t(3 * t + k)], b = mesh.triangles[std::size_t(3 * t + (k + 1) % 3)];
+      const double len = (mesh.X[std::size_t(a)] - mesh.X[std::size_t(b)]).norm();
+      h[std::size_t(a)] = std::min(h[std::size_t(a)], len);
+      h[std::size_t(b)] = std::min(h[std::size_t(b)], len);
+    }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (Index i = 0; i < n; ++i) {
+    Vec2 d(unit(rng), unit(rng));  // drawn for every node so the pattern does not depend on the boundary
+    if (on_boundary[std::size_t(i)]) continue;
+    if (d.norm() > 1.0) d.normalize();
+    mesh.X[std::size_t(i)] += fraction * h[std::size_t(i)] * d;
+  }
+}
+
+void scale_mesh(MeshData& mesh, double factor) {
+  for (auto& p : mesh.X) p *= factor;
+}
+
+}  // namespace loom

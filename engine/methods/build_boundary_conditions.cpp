@@ -1,0 +1,135 @@
+#include "engine/methods/build_boundary_conditions.hpp"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/boundary_edges.hpp"
+
+namespace loom {
+namespace {
+
+Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e) {
+  std::ostringstream where;
+  where << e.where << ": " << e.key;
+  bc.expressions.emplace_back(e.text, where.str());
+  return Index(bc.expressions.size() - 1);
+}
+
+// Sum of the global and the per-body body force (both per unit mass).
+std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b) {
+  if (!a) return b;
+  if (!b) return a;
+  ExpressionSpec e = *b;
+  e.text = "(" + a->text + ") + (" + b->text + ")";
+  return e;
+}
+
+}  // namespace
+
+BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
+                                                const std::vector<Cells>& cells, const std::vector<Index>& node_body,
+                                                int dofs_per_node) {
+  BoundaryConditions<2> bc;
+  bc.per_node = dofs_per_node;
+  const Index n_dofs = nodes.size() * dofs_per_node;
+
+  // Region tolerance: relative to the size of each body.
+  std::vector<Vec2> lo(scene.bodies.size(), Vec2::Constant(1e300)), hi(scene.bodies.size(), Vec2::Constant(-1e300));
+  for (Index i = 0; i < nodes.size(); ++i) {
+    const auto b = std::size_t(node_body[std::size_t(i)]);
+    lo[b] = lo[b].cwiseMin(nodes.X[i]), hi[b] = hi[b].cwiseMax(nodes.X[i]);
+  }
+
+  // Boundary edges of every body (cells of all blocks; bodies do not share nodes).
+  std::vector<Index> corners;
+  for (const Cells& cb : cells)
+    for (Index c = 0; c < cb.size(); ++c)
+      for (int a = 0; a < 3; ++a) corners.push_back(cb.node(c, a));
+  const auto edges = boundary_edges(corners, 3);
+
+  std::map<Index, std::size_t> prescribed_at;  // dof -> entry of bc.prescribed
+  std::vector<Index> prescriber;               // boundary that created each entry
+  for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
+    const BoundarySpec& spec = scene.boundaries[k];
+    const auto body = std::size_t(spec.body);
+    const double tol = 1e-9 * std::max(1.0, (hi[body] - lo[body]).norm());
+    auto inside = [&](Index i) {
+      const Vec2& X = nodes.X[i];
+      return node_body[std::size_t(i)] == spec.body && X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol &&
+             X.y() >= spec.box_min.y() - tol && X.y() <= spec.box_max.y() + tol;
+    };
+    std::vector<Index> selected;
+    for (Index i = 0; i < nodes.size(); ++i)
+      if (inside(i)) selected.push_back(i);
+    LOOM_CHECK(!selected.empty(), InputError,
+               spec.region_where << ": error: boundary[" << k << "].region.box: the region selects no node of body \""
+                                 << scene.bodies[body].name << "\" (its nodes span [" << lo[body].x() << ", " << lo[body].y()
+                                 << "] to [" << hi[body].x() << ", " << hi[body].y() << "])");
+    bc.boundary_names.push_back(spec.name);
+    bc.boundary_nodes.push_back(selected);
+    bc.boundary_prescribed.emplace_back();
+
+    const std::optional<ExpressionSpec>* comps[2] = {&spec.displacement.x, &spec.displacement.y};
+    for (int d = 0; d < 2; ++d) {
+      if (!*comps[d]) continue;
+      const Index expr = add_expression(bc, **comps[d]);
+      for (Index i : selected) {
+        const Index dof = i * dofs_per_node + d;
+        auto it = prescribed_at.find(dof);
+        if (it == prescribed_at.end()) {
+          prescribed_at[dof] = bc.prescribed.size();
+          bc.prescribed.push_back({dof, i, expr});
+          prescriber.push_back(Index(k));
+          bc.boundary_prescribed.back().push_back(Index(bc.prescribed.size() - 1));
+          continue;
+        }
+        const auto& other = bc.prescribed[it->second];
+        const std::string& other_text = bc.expressions[std::size_t(other.expression)].text();
+        LOOM_CHECK(other_text == (*comps[d])->text, InputError,
+                   (*comps[d])->where << ": error: " << (*comps[d])->key << ": node at (" << nodes.X[i].x() << ", "
+                                      << nodes.X[i].y() << ") is also prescribed by boundary \""
+                                      << scene.boundaries[std::size_t(prescriber[it->second])].name << "\" with \""
+                                      << other_text << "\"; prescribe it once or with the same expression");
+        bc.boundary_prescribed.back().push_back(Index(it->second));
+      }
+    }
+
+    if (spec.has_traction) {
+      std::array<Index, 2> expr{kNoIndex, kNoIndex};
+      if (spec.traction.x) expr[0] = add_expression(bc, *spec.traction.x);
+      if (spec.traction.y) expr[1] = add_expression(bc, *spec.traction.y);
+      std::size_t n_edges = 0;
+      for (const auto& e : edges)
+        if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, expr}), ++n_edges;
+      LOOM_CHECK(n_edges > 0, InputError,
+                 spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary edges with both "
+                                   << "end nodes in the region, and this region holds none");
+      for (Index e : expr)
+        if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();
+    }
+  }
+
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    std::array<Index, 2> expr{kNoIndex, kNoIndex};
+    const auto x = combine(scene.body_force.x, scene.bodies[b].body_force.x);
+    const auto y = combine(scene.body_force.y, scene.bodies[b].body_force.y);
+    if (x) expr[0] = add_expression(bc, *x);
+    if (y) expr[1] = add_expression(bc, *y);
+    for (Index e : expr)
+      if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();
+    bc.body_force.push_back(expr);
+  }
+  bc.target = Eigen::VectorXd::Zero(n_dofs);
+  bc.external = Eigen::VectorXd::Zero(n_dofs);
+  return bc;
+}
+
+std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, Index n_nodes, int dofs_per_node) {
+  std::vector<DofKind> kinds(std::size_t(n_nodes) * std::size_t(dofs_per_node), DofKind::free);
+  for (const auto& p : bc.prescribed) kinds[std::size_t(p.dof)] = DofKind::prescribed;
+  return kinds;
+}
+
+}  // namespace loom

@@ -1,0 +1,25 @@
+// Builds the boundary conditions of a scene on its mesh: selects the nodes and boundary edges of each
+// [[boundary]] region, numbers the prescribed dofs and compiles the expressions. Errors that need the
+// mesh (a region that selects nothing, two boundaries prescribing one dof differently) are InputErrors
+// naming the scene position.
+#pragma once
+
+#include <vector>
+
+#include "engine/linalg/dof_map.hpp"
+#include "engine/scene/scene_spec.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+
+namespace loom {
+
+// dofs_per_node: layout of the run's DofMap (displacement components first).
+BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
+                                                const std::vector<Cells>& cells, const std::vector<Index>& node_body,
+                                                int dofs_per_node);
+
+// Dof kinds of the run: prescribed where a boundary prescribes a displacement component.
+std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, Index n_nodes, int dofs_per_node);
+
+}  // namespace loom

@@ -1,0 +1,239 @@
+#include "engine/methods/fem_method.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "engine/core/errors.hpp"
+#include "engine/drivers/newton.hpp"
+#include "engine/drivers/time_loop.hpp"
+#include "engine/io/files.hpp"
+#include "engine/io/progress.hpp"
+#include "engine/io/vtk_writer.hpp"
+#include "engine/methods/build_boundary_conditions.hpp"
+#include "engine/methods/build_mesh.hpp"
+#include "engine/methods/fem_newton_problem.hpp"
+#include "engine/store/store_report.hpp"
+#include "systems/assemble/compute_geometry.hpp"
+#include "systems/loads/apply_boundary_conditions.hpp"
+#include "systems/output/snapshot_frame.hpp"
+#include "systems/update/commit_step.hpp"
+#include "systems/update/lumped_mass.hpp"
+
+namespace loom {
+namespace {
+
+std::string file_stem(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+  return s;
+}
+
+}  // namespace
+
+FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
+    : scene_(scene), options_(options), solver_(scene.solver.linear) {
+  ctx_.scene = &scene_;
+  // 1. Columns: dynamic integrators need velocities and accelerations, lumped mass its column.
+  const bool dynamic = scene_.time.integrator == Integrator::euler_backward;
+  for (auto* c : {&nodes_.v, &nodes_.v_n, &nodes_.a, &nodes_.a_n}) c->use(dynamic);
+  nodes_.lumped_mass.use(dynamic && scene_.time.mass == MassKind::lumped);
+
+  // 2. Mesh, quadrature points and the reference geometry.
+  node_body_ = build_mesh(scene_, nodes_, cells_);
+  materials_ = body_materials(scene_);
+  allocate_quad_points(cells_, quad_);
+  LOOM_CHECK(compute_geometry(nodes_, cells_, quad_) == 0, InputError,
+             scene_.file << ": error: body mesh: the generated mesh has inverted or degenerate cells (distortion too large?)");
+  if (nodes_.lumped_mass.used()) compute_lumped_mass(cells_, quad_, materials_, nodes_);
+
+  // 3. Boundary conditions, dof numbering, sparsity and scatter.
+  const int per_node = 2;
+  bc_ = build_boundary_conditions(scene_, nodes_, cells_, node_body_, per_node);
+  system_.dofs.build(per_node, dof_kinds(bc_, nodes_.size(), per_node));
+  std::vector<const Cells*> blocks;
+  for (const auto& c : cells_) blocks.push_back(&c);
+  build_pattern(blocks, system_.dofs, system_.pattern);
+  system_.scatter.resize(cells_.size());
+  for (std::size_t b = 0; b < cells_.size(); ++b) build_scatter(cells_[b], system_.dofs, system_.pattern, system_.scatter[b]);
+  system_.resize_vectors();
+  probe_plan_ = plan_probes(scene_, nodes_, node_body_);
+
+  build_graph();
+}
+
+FemRun::~FemRun() = default;
+
+void FemRun::build_graph() {
+  graph_ = std::make_unique<StepGraph>("fem", ctx_, timers_);
+  StepGraph& g = *graph_;
+  g.name_store(&nodes_, "nodes");
+  g.name_store(&cells_, "cells");
+  g.name_store(&quad_, "quad_points");
+  g.name_store(&materials_, "materials");
+  g.name_store(&bc_, "boundary_conditions");
+  g.name_store(&system_, "linear_system");
+  g.name_store(&status_, "step_status");
+  g.name_store(&probe_writer_, "probes.csv");
+  g.name_store(&writer_, "vtk_writer");
+
+  g.add_system("apply_boundary_conditions", &apply_boundary_conditions, nodes_, cells_, materials_, bc_);
+  g.add_node("newton", {{&bc_, &cells_, &materials_}, {&nodes_, &quad_, &system_, &status_}}, [this] { newton_node(); },
+             "reset_iterate, then assemble -> solve -> update until converged");
+  const auto commit = g.add_system("commit", &commit_step, cells_, nodes_, quad_);
+  g.run_if(commit, &status_, [this] { return status_.converged; });
+  const auto probes = g.add_node("probes", {{&nodes_, &system_, &bc_}, {&probe_writer_}}, [this] { probes_node(); });
+  g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
+  const auto output = g.add_node("output", {{&nodes_, &cells_, &quad_, &materials_}, {&writer_}}, [this] { output_node(); },
+                                 "snapshot here; the VTK file is written while the next step runs");
+  g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
+  g.build();
+}
+
+void FemRun::newton_node() {
+  reset_iterate(nodes_);
+  NewtonSettings settings;
+  settings.max_iterations = scene_.solver.max_iterations;
+  settings.residual_relative = scene_.solver.residual_relative;
+  settings.residual_absolute = scene_.solver.residual_absolute;
+  settings.increment_relative = scene_.solver.increment_relative;
+  settings.line_search = scene_.solver.line_search;
+  FemNewtonProblem problem(ctx_, materials_, cells_, bc_, nodes_, quad_, system_, solver_, timers_);
+  const NewtonReport report = solve_newton(problem, settings, timers_);
+  status_.converged = report.converged;
+  status_.iterations = report.iterations;
+  status_.step_iterations += report.iterations;
+  status_.total_iterations += report.iterations;
+  status_.failure = report.failure;
+}
+
+void FemRun::probes_node() {
+  evaluate_probes(ctx_, probe_plan_, nodes_, system_, bc_, status_.step_iterations, probe_values_);
+  if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
+}
+
+bool FemRun::frame_due() const {
+  if (!options_.write_files || scene_.output.every == 0) return false;
+  return ctx_.step % scene_.output.every == 0 || ctx_.step == scene_.time.steps;
+}
+
+void FemRun::output_node() {
+  last_frame_time_ = ctx_.t;
+  auto frame = std::make_shared<Frame>();
+  snapshot_frame(ctx_, materials_, nodes_, cells_, quad_, *frame);
+  std::ostringstream name;
+  name << file_stem(scene_.scene.name) << "_" << std::setw(6) << std::setfill('0') << frame->step << ".vtu";
+  const std::string dir = options_.output_directory, file = name.str();
+  writer_.submit([this, frame, dir, file] {
+    ScopedTimer t(timers_, "output/write_vtu");
+    write_vtu(dir + "/" + file, *frame);
+    pvd_.add(frame->time, file);
+  });
+}
+
+void FemRun::describe(std::ostream& os) const {
+  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method fem, " << scene_.bodies.size() << " bodies\n";
+  os << "stores:\n";
+  {
+    StoreReport r(os, "nodes", nodes_.size());
+    nodes_.for_each_column(r);
+  }
+  {
+    StoreReport r(os, "points", points_.size());
+    points_.for_each_column(r);
+  }
+  for (std::size_t b = 0; b < cells_.size(); ++b) {
+    {
+      StoreReport r(os, std::string("cells[") + formulation_name(cells_[b].formulation) + ", " + cell_type_name(cells_[b].type) + "]",
+                    cells_[b].size());
+      cells_[b].for_each_column(r);
+    }
+    os << "    colours: " << cells_[b].n_colours() << "\n";
+    StoreReport r(os, std::string("quad_points[") + formulation_name(cells_[b].formulation) + "]", quad_[b].size());
+    quad_[b].for_each_column(r);
+  }
+  os << "  linear_system: " << system_.dofs.n_dofs() << " dofs, " << system_.dofs.n_free << " free, "
+     << system_.pattern.matrix.nonZeros() << " non-zeros; solver " << (scene_.solver.linear == LinearSolverKind::umfpack ? "umfpack" : scene_.solver.linear == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)") << "\n";
+  os << "  boundary_conditions: " << bc_.prescribed.size() << " prescribed dofs, " << bc_.traction_edges.size()
+     << " traction edges, loads " << (bc_.has_loads ? (bc_.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
+  graph_->print(os);
+}
+
+RunSummary FemRun::run() {
+  const auto start = std::chrono::steady_clock::now();
+  RunSummary summary;
+  summary.steps_requested = scene_.time.steps;
+  summary.dofs = system_.dofs.n_free;
+  for (const auto& c : cells_) summary.cells += c.size();
+
+  if (options_.write_files) {
+    make_directories(options_.output_directory);
+    pvd_ = PvdWriter(options_.output_directory, file_stem(scene_.scene.name));
+    std::vector<std::string> names;
+    for (const auto& p : scene_.probes) names.push_back(p.name);
+    probe_writer_.open(options_.output_directory + "/probes.csv", names);
+  }
+
+  // Initial state (step 0): loads at t = 0, one assembly for the reactions, probes and the first frame.
+  ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
+  apply_boundary_conditions(ctx_, nodes_, cells_, materials_, bc_);
+  assemble_system(ctx_, AssemblyMode::residual, materials_, nodes_, cells_, bc_, quad_, system_);
+  status_ = StepStatus{};
+  status_.converged = true;
+  probes_node();
+  if (options_.write_files && scene_.output.every > 0) output_node();
+
+  Progress progress(scene_.time.steps, options_.progress);
+  TimeLoopCallbacks callbacks;
+  callbacks.step_done = [&](const StepContext& ctx, const StepStatus& st) { progress.update(ctx.step, ctx.t, st.step_iterations); };
+  callbacks.cut_back = [&](const StepContext& ctx, const StepStatus& st) {
+    if (options_.log) {
+      progress.finish();
+      *options_.log << "step " << ctx.step << " (t = " << ctx.t << ", dt = " << ctx.dt << "): " << st.failure << "; cutting the step back\n";
+    }
+  };
+  TimeLoopResult result;
+  try {
+    result = run_time_loop(scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, ctx_, *graph_, status_, callbacks);
+  } catch (const RunError& e) {
+    // An anomaly in a system (not a Newton failure): the run stops, the output so far stays valid.
+    result.completed = false;
+    result.failed_step = ctx_.step;
+    result.failed_dt = ctx_.dt;
+    result.failure = e.what();
+    result.last_converged_step = std::max(0, ctx_.step - 1);
+    result.last_converged_time = double(result.last_converged_step) * scene_.time.dt;
+  }
+  progress.finish();
+
+  if (!result.completed && options_.write_files && scene_.output.every > 0 && result.last_converged_time != last_frame_time_) {
+    // Keep the last converged state for inspection (commit left it in u_n and F_n); it may lie inside
+    // the failed step after converged sub-steps, so it takes that step's number.
+    ctx_.step = result.failed_step;
+    ctx_.t = result.last_converged_time;
+    output_node();
+  }
+  writer_.wait();
+
+  summary.converged = result.completed;
+  summary.steps_done = result.last_converged_step;
+  summary.last_converged_step = result.last_converged_step;
+  summary.last_converged_time = result.completed ? double(scene_.time.steps) * scene_.time.dt : result.last_converged_time;
+  summary.newton_iterations = status_.total_iterations;
+  summary.cutbacks = result.cutbacks;
+  summary.linear_solver = solver_.backend();
+  if (!result.completed) {
+    std::ostringstream os;
+    os << "step " << result.failed_step << " did not converge after " << scene_.solver.max_cutbacks << " cut-backs (last dt "
+       << result.failed_dt << "): " << result.failure;
+    summary.failure = os.str();
+  }
+  wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.wall_seconds = wall_;
+  return summary;
+}
+
+}  // namespace loom

@@ -1,0 +1,83 @@
+// The fem recipe: updated-Lagrangian finite elements on a fixed mesh (no remeshing), the reference every
+// other method is measured against. Per (sub)step the graph runs
+//   apply_boundary_conditions -> newton [assemble -> solve -> update]* -> commit -> {probes, output}
+// with commit, probes and output only on a converged state, probes and output only at the end of a
+// scene step, and output only on frame steps; the VTK frame is written concurrently with the next step.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "engine/drivers/step_status.hpp"
+#include "engine/graph/step_graph.hpp"
+#include "engine/io/async_writer.hpp"
+#include "engine/io/probe_writer.hpp"
+#include "engine/io/pvd_writer.hpp"
+#include "engine/linalg/linear_solver.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/methods/method.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/points.hpp"
+#include "engine/store/quad_points.hpp"
+#include "engine/timing/timers.hpp"
+#include "systems/assemble/materials/material.hpp"
+#include "systems/output/evaluate_probes.hpp"
+
+namespace loom {
+
+class FemRun final : public MethodRun {
+ public:
+  FemRun(const SceneSpec& scene, const RunOptions& options);
+  ~FemRun() override;
+
+  void describe(std::ostream& os) const override;
+  RunSummary run() override;
+
+  // Read access for tests and tools.
+  const Nodes<2>& nodes() const { return nodes_; }
+  const std::vector<Cells>& cells() const { return cells_; }
+  const std::vector<QuadPoints<2>>& quad_points() const { return quad_; }
+  const LinearSystem& system() const { return system_; }
+  const BoundaryConditions<2>& boundary_conditions() const { return bc_; }
+  const std::vector<double>& probe_values() const { return probe_values_; }
+  const StepGraph& graph() const { return *graph_; }
+  const Timers& timers() const override { return timers_; }
+
+ private:
+  void build_graph();
+  void newton_node();
+  void probes_node();
+  void output_node();
+  bool frame_due() const;
+
+  SceneSpec scene_;
+  RunOptions options_;
+  StepContext ctx_;
+  Timers timers_;
+  StepStatus status_;
+
+  // Stores
+  Nodes<2> nodes_;
+  Points<2> points_;  // not used by fem: no column is allocated
+  std::vector<Cells> cells_;
+  std::vector<QuadPoints<2>> quad_;
+  std::vector<BodyMaterial> materials_;
+  BoundaryConditions<2> bc_;
+  LinearSystem system_;
+  std::vector<Index> node_body_;
+
+  // Per-run workspace
+  LinearSolve solver_;
+  ProbePlan probe_plan_;
+  std::vector<double> probe_values_;
+  ProbeWriter probe_writer_;
+  PvdWriter pvd_;
+  AsyncWriter writer_;
+  std::unique_ptr<StepGraph> graph_;
+  double wall_ = 0.0;
+  double last_frame_time_ = -1.0;
+};
+
+}  // namespace loom

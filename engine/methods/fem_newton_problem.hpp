@@ -1,0 +1,63 @@
+// The Newton problem of the fem recipe: binds NonlinearProblem's operations to the assemble, solve and
+// update systems on the run's stores.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "engine/drivers/newton.hpp"
+#include "engine/graph/step_context.hpp"
+#include "engine/linalg/linear_solver.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/quad_points.hpp"
+#include "systems/assemble/assemble_system.hpp"
+#include "systems/solve/solve_linear_step.hpp"
+#include "systems/update/update_iterate.hpp"
+
+namespace loom {
+
+class FemNewtonProblem final : public NonlinearProblem {
+ public:
+  FemNewtonProblem(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const std::vector<Cells>& cells,
+                   const BoundaryConditions<2>& bc, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
+                   LinearSystem& system, LinearSolve& solver, Timers& timers)
+      : ctx_(ctx), materials_(materials), cells_(cells), bc_(bc), nodes_(nodes), quad_(quad), system_(system),
+        solver_(solver), timers_(timers) {}
+
+  bool assemble(bool with_tangent) override {
+    const auto mode = with_tangent ? AssemblyMode::residual_and_tangent : AssemblyMode::residual;
+    return assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_).inverted_cells == 0;
+  }
+  double residual_norm() const override { return system_.residual.norm(); }
+  bool solve() override { return solve_linear_step(nodes_, bc_, solver_, system_, timers_) == LinearSolveStatus::ok; }
+  void update(double step) override { update_iterate(step, system_, nodes_); }
+  double increment_norm() const override { return system_.increment.norm(); }
+  double step_change_norm() const override {
+    double s = 0.0;
+    for (Index i = 0; i < nodes_.size(); ++i) s += (nodes_.u[i] - nodes_.u_n[i]).squaredNorm();
+    return std::sqrt(s);
+  }
+  bool prescribed_pending() const override {
+    for (const auto& p : bc_.prescribed) {
+      const double target = bc_.target[p.dof], u = nodes_.u[p.node][p.dof % bc_.per_node];
+      if (std::abs(target - u) > 1e-13 * (std::abs(target) + std::abs(u)) + 1e-300) return true;
+    }
+    return false;
+  }
+
+ private:
+  const StepContext& ctx_;
+  const std::vector<BodyMaterial>& materials_;
+  const std::vector<Cells>& cells_;
+  const BoundaryConditions<2>& bc_;
+  Nodes<2>& nodes_;
+  std::vector<QuadPoints<2>>& quad_;
+  LinearSystem& system_;
+  LinearSolve& solver_;
+  Timers& timers_;
+};
+
+}  // namespace loom

@@ -1,0 +1,16 @@
+#include "engine/methods/method.hpp"
+
+#include "engine/core/errors.hpp"
+#include "engine/methods/fem_method.hpp"
+
+namespace loom {
+
+std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options) {
+  switch (scene.scene.method) {
+    case Method::fem: return std::make_unique<FemRun>(scene, options);
+    default: break;
+  }
+  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem)");
+}
+
+}  // namespace loom

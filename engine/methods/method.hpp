@@ -1,0 +1,39 @@
+// A method is a recipe (DESIGN §4): it reads the scene, builds the stores and columns it needs, wires
+// its systems into a step graph and runs the time loop. The program (engine/cli) only sees this
+// interface.
+#pragma once
+
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "engine/drivers/run_summary.hpp"
+#include "engine/scene/scene_spec.hpp"
+#include "engine/timing/timers.hpp"
+
+namespace loom {
+
+struct RunOptions {
+  std::string output_directory;  // resolved: --out or [output] directory
+  int threads = 0;               // oneTBB concurrency in effect (reported)
+  bool write_files = true;       // false for `loom info` / `loom check`
+  bool progress = true;
+  std::ostream* log = nullptr;   // run messages (cut-backs, failure); nullptr: silent
+};
+
+class MethodRun {
+ public:
+  virtual ~MethodRun() = default;
+  // Stores with their allocated columns, and the step graph (`loom info`).
+  virtual void describe(std::ostream& os) const = 0;
+  // Runs every step; never throws for a failed solve (the summary says so), throws RunError for
+  // anomalies and InputError for scene errors found while building.
+  virtual RunSummary run() = 0;
+  // Per-system timings of the last run (the table at exit and timings.json).
+  virtual const Timers& timers() const = 0;
+};
+
+// Builds the stores of the scene's method; scene errors that need the mesh are InputErrors.
+std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options);
+
+}  // namespace loom

@@ -1,0 +1,327 @@
+#include "engine/scene/scene_loader.hpp"
+
+#include <cstdint>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "engine/core/errors.hpp"
+#include "engine/scene/expression.hpp"
+#include "engine/scene/overrides.hpp"
+#include "engine/scene/schema_validator.hpp"
+#include "engine/scene/table_reader.hpp"
+
+namespace loom {
+namespace {
+
+template <class E>
+E pick(const std::string& v, std::initializer_list<std::pair<const char*, E>> table) {
+  for (const auto& [name, value] : table)
+    if (v == name) return value;
+  return table.begin()->second;  // unreachable after schema validation
+}
+
+std::string hash_text(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  std::ostringstream os;
+  os << std::hex << h;
+  return os.str();
+}
+
+void check_expression(const std::optional<ExpressionSpec>& e, Diagnostics& diag) {
+  if (!e) return;
+  const std::string err = Expression::compile_error(e->text);
+  if (!err.empty()) diag.error(e->where, e->key, "invalid expression \"" + e->text + "\": " + err);
+}
+
+VectorExpression read_vector(const TableReader& t, Diagnostics& diag) {
+  VectorExpression v;
+  if (!t.present()) return v;
+  v.x = t.expression("x");
+  v.y = t.expression("y");
+  check_expression(v.x, diag);
+  check_expression(v.y, diag);
+  return v;
+}
+
+template <class Spec>
+Index find_by_name(const std::vector<Spec>& items, const std::string& name) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == name) return Index(i);
+  return kNoIndex;
+}
+
+template <class Spec>
+std::string names_of(const std::vector<Spec>& items) {
+  std::string s;
+  for (const auto& i : items) s += (s.empty() ? "" : ", ") + i.name;
+  return s.empty() ? "(none)" : s;
+}
+
+class Loader {
+ public:
+  Loader(const toml::table& root, const std::string& file, Diagnostics& diag)
+      : root_(&root, "", "", file, diag), diag_(diag) {}
+
+  SceneSpec load() {
+    SceneSpec s;
+    read_scene(s);
+    read_time(s);
+    read_solver(s);
+    for (const auto& m : root_.array("material")) read_material(s, m);
+    for (const auto& b : root_.array("body")) read_body(s, b);
+    for (const auto& b : root_.array("boundary")) read_boundary(s, b);
+    s.body_force = read_vector(root_.table("body_force"), diag_);
+    for (const auto& p : root_.array("probe")) read_probe(s, p);
+    read_output(s);
+    check_mass(s);
+    return s;
+  }
+
+ private:
+  void read_scene(SceneSpec& s) {
+    const auto t = root_.table("scene");
+    s.scene.name = t.string("name");
+    if (t.has("name") && s.scene.name.empty()) t.error("name", "must not be empty");
+    const std::string m = t.string("method");
+    s.scene.method = pick<Method>(m, {{"fem", Method::fem}, {"pfem", Method::pfem}, {"es_pfem", Method::es_pfem},
+                                      {"mpm", Method::mpm}, {"mpm_fem", Method::mpm_fem}});
+    if (s.scene.method != Method::fem) t.error("method", "method \"" + m + "\" is not implemented yet (available: fem)");
+    s.scene.dimension = int(t.integer("dimension"));
+    s.scene.units = t.string("units");
+    s.scene.description = t.string("description");
+  }
+
+  void read_time(SceneSpec& s) {
+    const auto t = root_.table("time");
+    s.time.integrator = pick<Integrator>(t.string("integrator"), {{"static", Integrator::static_}, {"euler_backward", Integrator::euler_backward}});
+    s.time.dt = t.real("dt");
+    s.time.steps = int(t.integer("steps"));
+    s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
+  }
+
+  void read_solver(SceneSpec& s) {
+    const auto t = root_.table("solver");
+    s.solver.max_iterations = int(t.integer("max_iterations"));
+    s.solver.residual_relative = t.real("residual_relative");
+    s.solver.residual_absolute = t.real("residual_absolute");
+    s.solver.increment_relative = t.real("increment_relative");
+    s.solver.line_search = t.boolean("line_search");
+    s.solver.max_cutbacks = int(t.integer("max_cutbacks"));
+    s.solver.linear = pick<LinearSolverKind>(t.string("linear"), {{"auto", LinearSolverKind::automatic},
+                                                                  {"cholmod", LinearSolverKind::cholmod},
+                                                                  {"umfpack", LinearSolverKind::umfpack}});
+  }
+
+  void read_material(SceneSpec& s, const TableReader& t) {
+    MaterialSpec m;
+    m.name = t.string("name");
+    m.where = t.where();
+    if (find_by_name(s.materials, m.name) != kNoIndex) t.error("name", "a material named \"" + m.name + "\" already exists");
+    m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic}});
+    m.density = t.real("density");
+    const bool e_nu = t.has("E") || t.has("nu"), k_g = t.has("K") || t.has("G");
+    if (e_nu && k_g) {
+      t.error(t.has("K") ? "K" : "G", "give the elastic constants either as (E, nu) or as (K, G), not both");
+    } else if (e_nu) {
+      if (!t.has("E")) t.error("nu", "nu needs E");
+      if (!t.has("nu")) t.error("E", "E needs nu");
+      m.E = t.real("E"), m.nu = t.real("nu");
+      m.mu = m.E / (2 * (1 + m.nu));                            // seed 000 eq 49
+      m.lambda = m.E * m.nu / ((1 + m.nu) * (1 - 2 * m.nu));
+      m.G = m.mu, m.K = m.lambda + 2 * m.mu / 3;                 // eq 50
+    } else if (k_g) {
+      if (!t.has("K")) t.error("G", "G needs K");
+      if (!t.has("G")) t.error("K", "K needs G");
+      m.K = t.real("K"), m.G = t.real("G");
+      m.mu = m.G, m.lambda = m.K - 2 * m.G / 3;                  // eq 50
+      m.E = 9 * m.K * m.G / (3 * m.K + m.G);
+      m.nu = (3 * m.K - 2 * m.G) / (2 * (3 * m.K + m.G));
+    } else {
+      t.error("", "missing elastic constants: give (E, nu) or (K, G)");
+    }
+    s.materials.push_back(m);
+  }
+
+  void read_body(SceneSpec& s, const TableReader& t) {
+    BodySpec b;
+    b.name = t.string("name");
+    b.where = t.where();
+    if (find_by_name(s.bodies, b.name) != kNoIndex) t.error("name", "a body named \"" + b.name + "\" already exists");
+    const std::string mat = t.string("material");
+    b.material = find_by_name(s.materials, mat);
+    if (t.has("material") && b.material == kNoIndex)
+      t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
+    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}});
+    const auto mesh = t.table("mesh");
+    MeshSpec& m = b.mesh;
+    m.where = mesh.where();
+    m.generator = pick<MeshGenerator>(mesh.string("generator"), {{"rectangle", MeshGenerator::rectangle}, {"cooks_membrane", MeshGenerator::cooks_membrane}});
+    const auto div = mesh.ivec2("divisions");
+    m.nx = int(div[0]), m.ny = int(div[1]);
+    if (mesh.has("divisions") && (div[0] < 1 || div[1] < 1)) mesh.error("divisions", "divisions must be >= 1");
+    if (mesh.has("divisions") && double(div[0]) * double(div[1]) > 5e7) mesh.error("divisions", "more than 5e7 cells requested");
+    m.pattern = pick<GridPattern>(mesh.string("pattern"), {{"right", GridPattern::right}, {"alternating", GridPattern::alternating}, {"shifted", GridPattern::shifted}});
+    m.scale = mesh.real("scale");
+    m.distortion = mesh.real("distortion");
+    m.seed = mesh.integer("seed");
+    if (m.generator == MeshGenerator::rectangle) {
+      m.origin = mesh.vec2("origin");
+      if (mesh.present() && !mesh.has("size")) mesh.error("", "missing required key size (for generator = \"rectangle\")");
+      m.size = mesh.vec2("size");
+      if (mesh.has("size") && (m.size.x() <= 0 || m.size.y() <= 0)) mesh.error("size", "width and height must be > 0");
+    } else {
+      for (const char* k : {"origin", "size"})
+        if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"cooks_membrane\" (use scale)");
+    }
+    b.body_force = read_vector(t.table("body_force"), diag_);
+    s.bodies.push_back(b);
+  }
+
+  void read_boundary(SceneSpec& s, const TableReader& t) {
+    BoundarySpec b;
+    b.name = t.string("name");
+    if (find_by_name(s.boundaries, b.name) != kNoIndex) t.error("name", "a boundary named \"" + b.name + "\" already exists");
+    if (t.has("body")) {
+      const std::string body = t.string("body");
+      b.body = find_by_name(s.bodies, body);
+      if (b.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+    } else if (s.bodies.size() > 1) {
+      t.error("", "missing key body (the scene has several bodies)");
+    }
+    const auto region = t.table("region");
+    b.region_where = region.where("box");
+    const auto box = region.box("box");
+    b.box_min = box[0], b.box_max = box[1];
+    if (region.has("box") && (box[0].x() > box[1].x() || box[0].y() > box[1].y()))
+      region.error("box", "the first corner must be the lower-left one ([[xmin, ymin], [xmax, ymax]])");
+    b.displacement = read_vector(t.table("displacement"), diag_);
+    const auto traction = t.table("traction");
+    b.has_traction = traction.present();
+    b.traction = read_vector(traction, diag_);
+    if (t.table("displacement").present() && !b.displacement.x && !b.displacement.y)
+      t.error("displacement", "give at least one component (x or y)");
+    s.boundaries.push_back(b);
+  }
+
+  void read_probe(SceneSpec& s, const TableReader& t) {
+    ProbeSpec p;
+    p.name = t.string("name");
+    p.where = t.where();
+    if (find_by_name(s.probes, p.name) != kNoIndex || p.name == "step" || p.name == "time")
+      t.error("name", "the probe name \"" + p.name + "\" is already a column of probes.csv");
+    if (p.name.find_first_of(",\"\n") != std::string::npos) t.error("name", "a probe name may not hold commas, quotes or newlines");
+    const std::string kind = t.string("kind");
+    p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton}});
+    p.component = t.string("component") == "y" ? 1 : 0;
+    auto needs = [&](const char* key) {
+      if (t.present() && t.has("kind") && !t.has(key)) t.error("", std::string("missing key ") + key + " (needed by kind = \"" + kind + "\")");
+    };
+    auto unused = [&](const char* key) {
+      if (t.has(key)) t.error(key, std::string(key) + " is not used by kind = \"" + kind + "\"");
+    };
+    switch (p.kind) {
+      case ProbeKind::reaction: {
+        needs("boundary"), needs("component"), unused("at"), unused("body");
+        const std::string bname = t.string("boundary");
+        p.boundary = find_by_name(s.boundaries, bname);
+        if (t.has("boundary") && p.boundary == kNoIndex) {
+          t.error("boundary", "no [[boundary]] named \"" + bname + "\" (known: " + names_of(s.boundaries) + ")");
+        } else if (p.boundary != kNoIndex && t.has("component")) {
+          const auto& d = s.boundaries[std::size_t(p.boundary)].displacement;
+          if (!(p.component == 0 ? d.x : d.y))
+            t.error("component", "boundary \"" + bname + "\" prescribes no displacement in " + t.string("component") + ": there is no reaction to measure");
+        }
+        break;
+      }
+      case ProbeKind::point: {
+        needs("at"), needs("component"), unused("boundary");
+        p.at = t.vec2("at");
+        if (t.has("body")) {
+          const std::string body = t.string("body");
+          p.body = find_by_name(s.bodies, body);
+          if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+        }
+        break;
+      }
+      case ProbeKind::newton:
+        unused("boundary"), unused("component"), unused("at"), unused("body");
+        break;
+    }
+    s.probes.push_back(p);
+  }
+
+  void read_output(SceneSpec& s) {
+    const auto t = root_.table("output");
+    s.output.directory = t.has("directory") ? t.string("directory") : "out/" + s.scene.name;
+    s.output.every = int(t.integer("every"));
+  }
+
+  // Inertia and body forces act through the density: a zero density would silently drop them.
+  void check_mass(const SceneSpec& s) {
+    const bool global_force = s.body_force.x || s.body_force.y;
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      const auto& body = s.bodies[b];
+      if (body.material == kNoIndex) continue;
+      const auto& mat = s.materials[std::size_t(body.material)];
+      if (mat.density > 0) continue;
+      if (s.time.integrator != Integrator::static_)
+        diag_.error(mat.where, "material." + mat.name + ".density",
+                    "density must be > 0 for the dynamic integrator (used by body \"" + body.name + "\")");
+      else if (global_force || body.body_force.x || body.body_force.y)
+        diag_.error(mat.where, "material." + mat.name + ".density",
+                    "density must be > 0: a body force acts on body \"" + body.name + "\"");
+    }
+  }
+
+  TableReader root_;
+  Diagnostics& diag_;
+};
+
+}  // namespace
+
+SceneSpec load_scene_text(const std::string& text, const std::string& file, const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << file << ":" << e.source().begin.line << ":" << e.source().begin.column << ": error: syntax: " << e.description();
+    throw InputError(os.str());
+  }
+  std::string all = text;
+  for (const auto& o : overrides) {
+    apply_override(root, o);
+    all += "\n--set " + o;
+  }
+  Diagnostics diag;
+  validate_against_schema(root, file, diag);
+  SceneSpec spec;
+  if (diag.ok()) spec = Loader(root, file, diag).load();
+  if (!diag.ok()) {
+    // Report in file order.
+    auto errors = diag.errors();
+    std::stable_sort(errors.begin(), errors.end(), [](const Diagnostic& a, const Diagnostic& b) {
+      return a.where.line != b.where.line ? a.where.line < b.where.line : a.where.column < b.where.column;
+    });
+    Diagnostics sorted;
+    for (const auto& e : errors) sorted.error(e.where, e.key, e.message);
+    sorted.throw_if_errors();
+  }
+  spec.file = file;
+  spec.text_hash = hash_text(all);
+  return spec;
+}
+
+SceneSpec load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  LOOM_CHECK(in, InputError, file << ": error: cannot read the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_scene_text(text.str(), file, overrides);
+}
+
+}  // namespace loom

@@ -1,0 +1,130 @@
+// The validated, typed content of a scene file. Every value here has passed the schema and the semantic
+// checks of the loader; builders (mesh, boundary regions) may still find errors that need the mesh
+// (an empty region), so the specs keep the source position of the keys they came from.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/types.hpp"
+#include "engine/linalg/linear_solver.hpp"
+#include "engine/mesh/generators.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/scene/source.hpp"
+
+namespace loom {
+
+enum class Method { fem, pfem, es_pfem, mpm, mpm_fem };
+enum class Integrator { static_, euler_backward };
+enum class MassKind { lumped, consistent };
+enum class MaterialModel { neo_hooke, linear_elastic };
+enum class MeshGenerator { rectangle, cooks_membrane };
+enum class ProbeKind { reaction, point, newton };
+
+// A scalar given as a number or an expression in t, x, y (compiled later by Expression).
+struct ExpressionSpec {
+  std::string text;  // muparser source; a number is stored as its decimal text
+  SourceRef where;
+  std::string key;   // display key path, for messages
+};
+
+struct SceneInfo {
+  std::string name;
+  Method method = Method::fem;
+  int dimension = 2;
+  std::string units, description;
+};
+
+struct TimeSpec {
+  Integrator integrator = Integrator::static_;
+  double dt = 1.0;
+  int steps = 1;
+  MassKind mass = MassKind::lumped;
+};
+
+struct SolverSpec {
+  int max_iterations = 25;
+  double residual_relative = 1e-8;
+  double residual_absolute = 1e-10;
+  double increment_relative = 1e-12;
+  bool line_search = false;
+  int max_cutbacks = 4;
+  LinearSolverKind linear = LinearSolverKind::automatic;
+};
+
+// Elastic constants are kept in both forms; the loader derives the missing pair.
+struct MaterialSpec {
+  std::string name;
+  MaterialModel model = MaterialModel::neo_hooke;
+  double E = 0, nu = 0, K = 0, G = 0;
+  double lambda = 0, mu = 0;  // Lamé constants (seed 000 eq 49-50)
+  double density = 0;
+  SourceRef where;
+};
+
+struct MeshSpec {
+  MeshGenerator generator = MeshGenerator::rectangle;
+  Vec2 origin = Vec2::Zero();
+  Vec2 size = Vec2::Ones();
+  int nx = 1, ny = 1;
+  GridPattern pattern = GridPattern::right;
+  double scale = 1.0;
+  double distortion = 0.0;
+  long long seed = 1;
+  SourceRef where;
+};
+
+struct VectorExpression {
+  std::optional<ExpressionSpec> x, y;  // a component left out is absent (free / zero)
+};
+
+struct BodySpec {
+  std::string name;
+  Index material = 0;  // index into SceneSpec::materials
+  Formulation element = Formulation::p1;
+  MeshSpec mesh;
+  VectorExpression body_force;
+  SourceRef where;
+};
+
+struct BoundarySpec {
+  std::string name;
+  Index body = 0;
+  Vec2 box_min = Vec2::Zero(), box_max = Vec2::Zero();
+  SourceRef region_where;
+  VectorExpression displacement;
+  VectorExpression traction;
+  bool has_traction = false;
+};
+
+struct ProbeSpec {
+  std::string name;
+  ProbeKind kind = ProbeKind::newton;
+  Index boundary = kNoIndex;  // reaction
+  int component = 0;          // 0: x, 1: y
+  Vec2 at = Vec2::Zero();     // point
+  Index body = kNoIndex;      // point; kNoIndex: any body
+  SourceRef where;
+};
+
+struct OutputSpec {
+  std::string directory;
+  int every = 1;
+};
+
+struct SceneSpec {
+  std::string file;          // path of the scene file
+  std::string text_hash;     // hash of the file content and the --set overrides
+  SceneInfo scene;
+  TimeSpec time;
+  SolverSpec solver;
+  std::vector<MaterialSpec> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<BoundarySpec> boundaries;
+  VectorExpression body_force;  // global, per unit mass
+  std::vector<ProbeSpec> probes;
+  OutputSpec output;
+};
+
+}  // namespace loom

@@ -1,0 +1,181 @@
+#include "engine/scene/schema.hpp"
+
+#include <sstream>
+#include <unordered_map>
+
+namespace loom {
+namespace {
+
+KeySpec key(std::string path, ValueKind kind, std::string doc) {
+  KeySpec k;
+  k.path = std::move(path);
+  k.kind = kind;
+  k.doc = std::move(doc);
+  return k;
+}
+
+using K = ValueKind;
+
+std::vector<KeySpec> build_schema() {
+  const std::string expr = " A number or a muparser expression in t (time), x, y (reference coordinates).";
+  std::vector<KeySpec> s;
+  // [scene]
+  s.push_back(key("scene", K::table, "What the scene is and which method runs it.").require());
+  s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
+  s.push_back(key("scene.method", K::choice, "Method (recipe) that runs the scene. Only fem is implemented so far.")
+                  .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
+  s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
+  s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
+  s.push_back(key("scene.description", K::string, "Free text.").by_default("\"\""));
+  // [time]
+  s.push_back(key("time", K::table, "Time stepping.").require());
+  s.push_back(key("time.integrator", K::choice, "static: no inertia; euler_backward: implicit Euler (seed 000 eq 12).")
+                  .one_of({"static", "euler_backward"}).by_default("static"));
+  s.push_back(key("time.dt", K::real, "Time step (pseudo-time for static runs; boundary expressions see t = step * dt).").require().above(0));
+  s.push_back(key("time.steps", K::integer, "Number of steps.").require().at_least(1));
+  s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent.")
+                  .one_of({"lumped", "consistent"}).by_default("lumped"));
+  // [solver]
+  s.push_back(key("solver", K::table, "Newton-Raphson and linear solver settings."));
+  s.push_back(key("solver.max_iterations", K::integer, "Newton iterations allowed per step before a cut-back.").by_default("25").at_least(1));
+  s.push_back(key("solver.residual_relative", K::real, "Converged when |r| <= residual_relative * |r_0| (r_0: first residual of the step).").by_default("1e-8").at_least(0));
+  s.push_back(key("solver.residual_absolute", K::real, "Converged when |r| <= residual_absolute (force units).").by_default("1e-10").at_least(0));
+  s.push_back(key("solver.increment_relative", K::real, "Converged when |du| <= increment_relative * |u - u_n| (stagnation at round-off).").by_default("1e-12").at_least(0));
+  s.push_back(key("solver.line_search", K::boolean, "Backtracking line search on the residual norm.").by_default("false"));
+  s.push_back(key("solver.max_cutbacks", K::integer, "Times a step may be halved after Newton fails before the run gives up.").by_default("4").at_least(0).at_most(30));
+  s.push_back(key("solver.linear", K::choice, "Linear solver: cholmod (SPD), umfpack (general LU), auto (CHOLMOD, UMFPACK if not positive definite).")
+                  .one_of({"auto", "cholmod", "umfpack"}).by_default("auto"));
+  // [[material]]
+  s.push_back(key("material", K::table_array, "Materials; give either (E, nu) or (K, G).").require());
+  s.push_back(key("material[].name", K::string, "Name bodies refer to.").require());
+  s.push_back(key("material[].model", K::choice, "neo_hooke: seed 000 eq 48-51; linear_elastic: small-strain Hooke.")
+                  .one_of({"neo_hooke", "linear_elastic"}).require());
+  s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
+  s.push_back(key("material[].nu", K::real, "Poisson's ratio (with E), -1 < nu < 0.5.").above(-1).below(0.5));
+  s.push_back(key("material[].K", K::real, "Bulk modulus (with G).").above(0));
+  s.push_back(key("material[].G", K::real, "Shear modulus (with K).").above(0));
+  s.push_back(key("material[].density", K::real, "Reference mass density rho_0 (needed by dynamic integrators and body forces).").by_default("0").at_least(0));
+  // [[body]]
+  s.push_back(key("body", K::table_array, "Bodies: a mesh, a material and an element.").require());
+  s.push_back(key("body[].name", K::string, "Name boundaries and probes refer to.").require());
+  s.push_back(key("body[].material", K::string, "Name of a [[material]].").require());
+  s.push_back(key("body[].element", K::choice, "Element formulation: p1 (linear displacement triangle).").one_of({"p1"}).by_default("p1"));
+  s.push_back(key("body[].mesh", K::table, "Mesh generator and its parameters.").require());
+  s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)).")
+                  .one_of({"rectangle", "cooks_membrane"}).require());
+  s.push_back(key("body[].mesh.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
+  s.push_back(key("body[].mesh.size", K::vec2, "Width and height (rectangle; required there)."));
+  s.push_back(key("body[].mesh.divisions", K::ivec2, "Element edges along x and y (cooks_membrane: along the clamped-to-loaded direction and across).").require());
+  s.push_back(key("body[].mesh.pattern", K::choice, "Triangulation of the grid: right, alternating, or shifted (seed 000 Fig 7b).")
+                  .one_of({"right", "alternating", "shifted"}).by_default("right"));
+  s.push_back(key("body[].mesh.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
+  s.push_back(key("body[].mesh.distortion", K::real, "Random move of interior nodes, as a fraction of the shortest adjacent edge.").by_default("0.0").at_least(0).at_most(0.45));
+  s.push_back(key("body[].mesh.seed", K::integer, "Seed of the distortion.").by_default("1").at_least(0));
+  s.push_back(key("body[].body_force", K::table, "Body force per unit mass on this body (added to the global [body_force])."));
+  s.push_back(key("body[].body_force.x", K::expression, "x component." + expr).by_default("0"));
+  s.push_back(key("body[].body_force.y", K::expression, "y component." + expr).by_default("0"));
+  // [[boundary]]
+  s.push_back(key("boundary", K::table_array, "Named regions with optional conditions on them."));
+  s.push_back(key("boundary[].name", K::string, "Name probes refer to.").require());
+  s.push_back(key("boundary[].body", K::string, "Body the region selects from (may be left out when there is one body)."));
+  s.push_back(key("boundary[].region", K::table, "Region: nodes inside the box, and boundary edges with both end nodes inside.").require());
+  s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (bounds included, to 1e-9 of the body size).").require());
+  s.push_back(key("boundary[].displacement", K::table, "Prescribed displacement; a component left out stays free (a roller)."));
+  s.push_back(key("boundary[].displacement.x", K::expression, "Prescribed u_x." + expr));
+  s.push_back(key("boundary[].displacement.y", K::expression, "Prescribed u_y." + expr));
+  s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges (seed 000 eq 8)."));
+  s.push_back(key("boundary[].traction.x", K::expression, "x component." + expr).by_default("0"));
+  s.push_back(key("boundary[].traction.y", K::expression, "y component." + expr).by_default("0"));
+  // [body_force]
+  s.push_back(key("body_force", K::table, "Body force per unit mass on every body (gravity: y = -9.81); needs density > 0."));
+  s.push_back(key("body_force.x", K::expression, "x component." + expr).by_default("0"));
+  s.push_back(key("body_force.y", K::expression, "y component." + expr).by_default("0"));
+  // [[probe]]
+  s.push_back(key("probe", K::table_array, "Quantities written to probes.csv every step."));
+  s.push_back(key("probe[].name", K::string, "Column name in probes.csv.").require());
+  s.push_back(key("probe[].kind", K::choice,
+                  "reaction: sum over the boundary's prescribed dofs of the force the constraint exerts on the body "
+                  "(f_int + M a - f_ext); point: displacement of the node nearest to `at`; newton: Newton iterations of the step.")
+                  .one_of({"reaction", "point", "newton"}).require());
+  s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction or point probe.").one_of({"x", "y"}));
+  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point probe."));
+  s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body)."));
+  // [output]
+  s.push_back(key("output", K::table, "Where and how often results are written."));
+  s.push_back(key("output.directory", K::string, "Output directory (relative to the working directory); `loom run --out` replaces it.")
+                  .by_default("\"out/<scene.name>\""));
+  s.push_back(key("output.every", K::integer, "Steps between VTK frames (0: no frames); the initial and the last state are always written.").by_default("1").at_least(0));
+  return s;
+}
+
+}  // namespace
+
+const char* value_kind_name(ValueKind k) {
+  switch (k) {
+    case K::table: return "table";
+    case K::table_array: return "array of tables";
+    case K::string: return "string";
+    case K::choice: return "string";
+    case K::real: return "number";
+    case K::integer: return "integer";
+    case K::boolean: return "boolean";
+    case K::expression: return "number or expression string";
+    case K::vec2: return "array of 2 numbers";
+    case K::ivec2: return "array of 2 integers";
+    case K::box: return "array of 2 arrays of 2 numbers";
+  }
+  return "?";
+}
+
+std::string KeySpec::range_text() const {
+  std::ostringstream os;
+  if (lower && upper) {
+    os << "in " << (lower_open ? "(" : "[") << *lower << ", " << *upper << (upper_open ? ")" : "]");
+  } else if (lower) {
+    os << (lower_open ? "> " : ">= ") << *lower;
+  } else if (upper) {
+    os << (upper_open ? "< " : "<= ") << *upper;
+  }
+  return os.str();
+}
+
+const std::vector<KeySpec>& scene_schema() {
+  static const std::vector<KeySpec> schema = build_schema();
+  return schema;
+}
+
+const KeySpec* find_key_spec(const std::string& schema_path) {
+  static const auto index = [] {
+    std::unordered_map<std::string, const KeySpec*> m;
+    for (const auto& k : scene_schema()) m.emplace(k.path, &k);
+    return m;
+  }();
+  auto it = index.find(schema_path);
+  return it == index.end() ? nullptr : it->second;
+}
+
+void print_schema(std::ostream& os, bool markdown) {
+  auto type_text = [](const KeySpec& k) {
+    std::string t = value_kind_name(k.kind);
+    if (!k.choices.empty()) {
+      t = "one of ";
+      for (std::size_t i = 0; i < k.choices.size(); ++i) t += (i ? ", " : "") + k.choices[i];
+    }
+    if (!k.range_text().empty()) t += ", " + k.range_text();
+    return t;
+  };
+  if (markdown) {
+    os << "| key | type | default | meaning |\n| --- | --- | --- | --- |\n";
+    for (const auto& k : scene_schema())
+      os << "| `" << k.path << "` | " << type_text(k) << " | " << (k.required ? "required" : k.default_value.empty() ? "-" : "`" + k.default_value + "`")
+         << " | " << k.doc << " |\n";
+    return;
+  }
+  for (const auto& k : scene_schema()) {
+    os << k.path << "\n    type: " << type_text(k) << "\n    default: "
+       << (k.required ? "(required)" : k.default_value.empty() ? "(none)" : k.default_value) << "\n    " << k.doc << "\n";
+  }
+}
+
+}  // namespace loom

@@ -1,0 +1,50 @@
+// Boundary conditions and loads of a mesh-based run, built once from the scene's [[boundary]] and body
+// force tables: which dofs are prescribed and by which expression, the boundary edges that carry a
+// traction, the body forces of each body. The apply_boundary_conditions system evaluates them at the
+// time of each step into `target` (prescribed values) and `external` (nodal external forces).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "engine/core/types.hpp"
+#include "engine/scene/expression.hpp"
+
+namespace loom {
+
+template <int D>
+struct BoundaryConditions {
+  std::vector<Expression> expressions;  // compiled; referenced by index below
+  int per_node = D;                     // dofs per node of the run's DofMap (dof = node * per_node + component)
+
+  struct Prescribed {
+    Index dof;   // global dof (node * per_node + component)
+    Index node;
+    Index expression;
+  };
+  std::vector<Prescribed> prescribed;
+
+  struct TractionEdge {
+    Index a, b;  // corner nodes, counter-clockwise along the outline
+    std::array<Index, D> expression;  // per component; kNoIndex: zero
+  };
+  std::vector<TractionEdge> traction_edges;
+
+  std::vector<std::array<Index, D>> body_force;  // per body, per component; kNoIndex: zero
+
+  std::vector<std::string> boundary_names;              // the scene's [[boundary]] names, in order
+  std::vector<std::vector<Index>> boundary_nodes;       // nodes selected by each boundary's region
+  std::vector<std::vector<Index>> boundary_prescribed;  // entries of `prescribed` owned by each boundary
+
+  bool loads_depend_on_time = false;  // else `external` is computed once
+  bool has_loads = false;             // any traction or body force
+
+  // Evaluated at the current step time:
+  Eigen::VectorXd target;    // n_dofs: prescribed values (meaningful on prescribed dofs only)
+  Eigen::VectorXd external;  // n_dofs: nodal external forces (tractions, body forces)
+  double external_time = kNaN;  // time `external` was evaluated at
+};
+
+}  // namespace loom

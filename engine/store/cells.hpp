@@ -1,0 +1,60 @@
+// Cells: mesh or grid cells of one type (one store per cell type and body, DESIGN §2).
+// Connectivity is flat with a fixed stride; cells are ordered as generated and grouped by colour through
+// `by_colour` so that assembly can scatter race-free and deterministically (STYLE §4).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/core/types.hpp"
+#include "engine/store/column.hpp"
+
+namespace loom {
+
+enum class CellType { tri3, tri6 };
+
+// Element formulation of a cell block: what the assembly computes on its cells.
+//  p1: linear displacement triangle (tri3, one point).
+enum class Formulation { p1 };
+
+inline const char* formulation_name(Formulation f) {
+  switch (f) {
+    case Formulation::p1: return "p1";
+  }
+  return "?";
+}
+
+inline int nodes_per_cell(CellType t) { return t == CellType::tri3 ? 3 : 6; }
+inline const char* cell_type_name(CellType t) { return t == CellType::tri3 ? "tri3" : "tri6"; }
+
+struct Cells {
+  CellType type = CellType::tri3;
+  Formulation formulation = Formulation::p1;
+  int stride = 3;           // nodes per cell
+  Column<Index> nodes;      // n_cells * stride node indices, counter-clockwise corners first
+  Column<Index> body;       // owning body index
+  Column<Index> colour;     // colour of each cell: cells of one colour share no node
+
+  // Cells grouped by colour: the cells of colour k are by_colour[colour_offsets[k] .. colour_offsets[k+1]).
+  std::vector<Index> by_colour;
+  std::vector<Index> colour_offsets;
+
+  explicit Cells(CellType t = CellType::tri3, Formulation f = Formulation::p1)
+      : type(t), formulation(f), stride(nodes_per_cell(t)) {
+    nodes.use();
+    body.use();
+    colour.use();
+  }
+
+  Index size() const { return stride == 0 ? 0 : nodes.size() / stride; }
+  Index n_colours() const { return colour_offsets.empty() ? 0 : Index(colour_offsets.size()) - 1; }
+  const Index* cell_nodes(Index c) const { return nodes.data() + static_cast<std::size_t>(c) * stride; }
+  Index node(Index c, int a) const { return nodes[c * stride + a]; }
+
+  template <class Visit>
+  void for_each_column(Visit&& f) const {
+    f("nodes", nodes), f("body", body), f("colour", colour);
+  }
+};
+
+}  // namespace loom

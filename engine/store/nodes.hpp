@@ -1,0 +1,55 @@
+// Nodes: the carriers of the solution (mesh nodes of FEM/PFEM, later the MPM background grid).
+// Units are the scene's: lengths L, time T. Displacements are total (u = x - X); the converged values of
+// the last step carry the suffix _n (seed 000 eq 1: u = u_n + du).
+#pragma once
+
+#include "engine/core/types.hpp"
+#include "engine/store/column.hpp"
+
+namespace loom {
+
+template <int D>
+struct Nodes {
+  using V = Vec<D>;
+
+  Column<V> X;       // reference coordinates (always)
+  Column<V> u;       // displacement iterate (always)
+  Column<V> u_n;     // converged displacement of the previous step (always)
+  Column<V> v;       // velocity iterate (dynamic integrators)
+  Column<V> v_n;     // converged velocity (dynamic integrators)
+  Column<V> a;       // acceleration iterate (dynamic integrators)
+  Column<V> a_n;     // converged acceleration (dynamic integrators)
+  Column<double> lumped_mass;  // row-sum mass, M/L^0 (dynamic with lumped mass)
+
+  Nodes() {
+    X.use();
+    u.use();
+    u_n.use();
+  }
+
+  Index size() const { return X.size(); }
+
+  template <class Visit>
+  void for_each_column(Visit&& f) {
+    f("X", X), f("u", u), f("u_n", u_n), f("v", v), f("v_n", v_n), f("a", a), f("a_n", a_n),
+        f("lumped_mass", lumped_mass);
+  }
+  template <class Visit>
+  void for_each_column(Visit&& f) const {
+    const_cast<Nodes*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
+  }
+
+  // Sizes every used column to n entities (new entries are zero).
+  void resize(Index n) {
+    for_each_column([n](const char*, auto& c) {
+      using T = typename std::decay_t<decltype(c)>::value_type;
+      if constexpr (std::is_arithmetic_v<T>) c.resize(n, T(0));
+      else c.resize(n, T::Zero());
+    });
+  }
+
+  Vec<D> position(Index i) const { return X[i] + u[i]; }
+  Vec<D> position_n(Index i) const { return X[i] + u_n[i]; }
+};
+
+}  // namespace loom

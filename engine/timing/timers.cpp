@@ -1,0 +1,70 @@
+#include "engine/timing/timers.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <vector>
+
+namespace loom {
+
+void Timers::add(const std::string& name, double seconds) {
+  std::lock_guard lock(mutex_);
+  auto& s = stats_[name];
+  ++s.calls;
+  s.total += seconds;
+  s.max = std::max(s.max, seconds);
+}
+
+std::map<std::string, TimerStats> Timers::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+void Timers::clear() {
+  std::lock_guard lock(mutex_);
+  stats_.clear();
+}
+
+void Timers::print_table(std::ostream& os, double wall) const {
+  const auto stats = snapshot();
+  // Top-level entries by total time, each followed by its children (by total time).
+  std::vector<std::pair<std::string, TimerStats>> top;
+  for (const auto& e : stats)
+    if (e.first.find('/') == std::string::npos) top.push_back(e);
+  auto by_total = [](const auto& a, const auto& b) { return a.second.total > b.second.total; };
+  std::sort(top.begin(), top.end(), by_total);
+  const auto flags = os.flags();
+  os << std::left << std::setw(34) << "system" << std::right << std::setw(9) << "calls" << std::setw(12) << "total s"
+     << std::setw(12) << "mean ms" << std::setw(12) << "max ms" << std::setw(9) << "share" << "\n";
+  auto row = [&](const std::string& label, const TimerStats& s) {
+    os << std::left << std::setw(34) << label << std::right << std::setw(9) << s.calls << std::fixed << std::setprecision(3)
+       << std::setw(12) << s.total << std::setw(12) << 1e3 * s.total / double(std::max(1LL, s.calls)) << std::setw(12)
+       << 1e3 * s.max << std::setw(8) << std::setprecision(1) << (wall > 0 ? 100.0 * s.total / wall : 0.0) << "%\n";
+    os.unsetf(std::ios::fixed);
+  };
+  for (const auto& [name, s] : top) {
+    row(name, s);
+    std::vector<std::pair<std::string, TimerStats>> children;
+    for (const auto& e : stats)
+      if (e.first.rfind(name + "/", 0) == 0 && e.first.find('/', name.size() + 1) == std::string::npos) children.push_back(e);
+    std::sort(children.begin(), children.end(), by_total);
+    for (const auto& [cname, cs] : children) row("  " + cname.substr(name.size() + 1), cs);
+  }
+  os.flags(flags);
+}
+
+void Timers::write_json(std::ostream& os, double wall) const {
+  const auto stats = snapshot();
+  const auto flags = os.flags();
+  os << std::setprecision(9) << "{\n  \"wall\": " << wall << ",\n  \"timers\": {";
+  bool first = true;
+  for (const auto& [name, s] : stats) {
+    os << (first ? "\n" : ",\n") << "    \"" << name << "\": {\"calls\": " << s.calls << ", \"total\": " << s.total
+       << ", \"mean\": " << s.total / double(std::max(1LL, s.calls)) << ", \"max\": " << s.max
+       << ", \"share\": " << (wall > 0 ? s.total / wall : 0.0) << "}";
+    first = false;
+  }
+  os << "\n  }\n}\n";
+  os.flags(flags);
+}
+
+}  // namespace loom

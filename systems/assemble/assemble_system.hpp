@@ -1,0 +1,34 @@
+// Assembly of the Newton system of a mesh-based run (seed 000 eqs 4-15): internal forces and tangent of
+// every cell block, inertia of the time integrator, external loads, and the Dirichlet lift.
+//
+// Residual on all dofs: r = f_int + M a - f_ext (on prescribed dofs this is the reaction). While a
+// prescribed dof lags its target g (first iteration of a step), the free rows also get K_fp (g - u_p),
+// so that one Newton step applies the prescribed increment consistently (no artificial spike).
+// Cells are visited colour by colour, the cells of a colour in parallel: the result is independent of
+// the thread count.
+#pragma once
+
+#include <vector>
+
+#include "engine/graph/step_context.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/quad_points.hpp"
+#include "systems/assemble/materials/material.hpp"
+
+namespace loom {
+
+enum class AssemblyMode { residual, residual_and_tangent };
+
+struct AssemblyResult {
+  Index inverted_cells = 0;  // cells where J <= 0 at the iterate: the residual is meaningless
+};
+
+AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const std::vector<BodyMaterial>& materials,
+                               const Nodes<2>& nodes, const std::vector<Cells>& cells,
+                               const BoundaryConditions<2>& bc, std::vector<QuadPoints<2>>& quad,
+                               LinearSystem& system);
+
+}  // namespace loom

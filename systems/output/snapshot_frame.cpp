@@ -1,0 +1,77 @@
+#include "systems/output/snapshot_frame.hpp"
+
+#include <cmath>
+
+#include "engine/core/parallel.hpp"
+
+namespace loom {
+
+void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes,
+                    const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad, Frame& frame) {
+  frame.step = ctx.step;
+  frame.time = ctx.t;
+  const Index n = nodes.size();
+  frame.points.resize(3 * std::size_t(n));
+  FrameArray displacement{"displacement", 3, std::vector<double>(3 * std::size_t(n), 0.0)};
+  FrameArray velocity{"velocity", 3, {}};
+  if (nodes.v_n.used()) velocity.values.assign(3 * std::size_t(n), 0.0);
+  for_each_index(n, [&](Index i) {
+    const Vec2 x = nodes.position_n(i);
+    frame.points[3 * std::size_t(i)] = x.x(), frame.points[3 * std::size_t(i) + 1] = x.y(), frame.points[3 * std::size_t(i) + 2] = 0.0;
+    for (int d = 0; d < 2; ++d) {
+      displacement.values[3 * std::size_t(i) + std::size_t(d)] = nodes.u_n[i][d];
+      if (nodes.v_n.used()) velocity.values[3 * std::size_t(i) + std::size_t(d)] = nodes.v_n[i][d];
+    }
+  });
+
+  Index n_cells = 0;
+  std::size_t n_conn = 0;
+  for (const auto& cb : cells) n_cells += cb.size(), n_conn += std::size_t(cb.size()) * std::size_t(cb.stride);
+  frame.connectivity.clear();
+  frame.connectivity.reserve(n_conn);
+  frame.offsets.clear();
+  frame.cell_types.clear();
+  FrameArray stress{"stress", 9, std::vector<double>(9 * std::size_t(n_cells), 0.0)};
+  FrameArray pressure{"pressure", 1, std::vector<double>(std::size_t(n_cells), 0.0)};
+  FrameArray J{"J", 1, std::vector<double>(std::size_t(n_cells), 0.0)};
+  FrameArray von_mises{"von_mises", 1, std::vector<double>(std::size_t(n_cells), 0.0)};
+  FrameArray body{"body", 1, std::vector<double>(std::size_t(n_cells), 0.0)};
+
+  Index first = 0;
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    const Cells& cb = cells[b];
+    const QuadPoints<2>& qb = quad[b];
+    for (Index c = 0; c < cb.size(); ++c) {
+      for (int a = 0; a < cb.stride; ++a) frame.connectivity.push_back(cb.node(c, a));
+      frame.offsets.push_back(Index(frame.connectivity.size()));
+      frame.cell_types.push_back(cb.type == CellType::tri3 ? kVtkTriangle : kVtkQuadraticTriangle);
+    }
+    for_each_index(cb.size(), [&](Index c) {
+      const std::size_t k = std::size_t(first + c);
+      Mat3 sigma_mean = Mat3::Zero();
+      double J_mean = 0.0;
+      for (int q = 0; q < qb.per_cell; ++q) {
+        const Mat3& F = qb.F_n[c * qb.per_cell + q];
+        Mat3 sigma = Mat3::Constant(kNaN);
+        cauchy_stress(materials[std::size_t(cb.body[c])].model, F, sigma);
+        sigma_mean += sigma / qb.per_cell;
+        J_mean += F.determinant() / qb.per_cell;
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) stress.values[9 * k + std::size_t(3 * i + j)] = sigma_mean(i, j);
+      const double p = -sigma_mean.trace() / 3.0;
+      const Mat3 dev = sigma_mean + p * Mat3::Identity();
+      pressure.values[k] = p;
+      J.values[k] = J_mean;
+      von_mises.values[k] = std::sqrt(1.5 * dev.squaredNorm());
+      body.values[k] = cb.body[c];
+    });
+    first += cb.size();
+  }
+  frame.point_arrays.clear();
+  frame.point_arrays.push_back(std::move(displacement));
+  if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
+  frame.cell_arrays = {std::move(stress), std::move(pressure), std::move(J), std::move(von_mises), std::move(body)};
+}
+
+}  // namespace loom

@@ -1,0 +1,18 @@
+// Solves the Newton correction K du = -r with the run's linear solver and builds the full-dof increment
+// (prescribed dofs: the gap to their target).
+#pragma once
+
+#include "engine/linalg/linear_solver.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/timing/timers.hpp"
+
+namespace loom {
+
+enum class LinearSolveStatus { ok, singular };
+
+LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
+                                    LinearSystem& system, Timers& timers);
+
+}  // namespace loom

@@ -1,0 +1,19 @@
+// Accepts a converged (sub)step: the iterate becomes the history (u_n, v_n, a_n, F_n) and the
+// updated-Lagrangian reference B_n moves to the converged configuration (new dN/dX_n and dV_n).
+// Velocities and accelerations follow the Euler backward scheme (seed 000 eq 12):
+// v = (u - u_n) / dt, a = (v - v_n) / dt.
+#pragma once
+
+#include <vector>
+
+#include "engine/graph/step_context.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/quad_points.hpp"
+
+namespace loom {
+
+void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes,
+                 std::vector<QuadPoints<2>>& quad);
+
+}  // namespace loom

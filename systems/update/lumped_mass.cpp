@@ -1,0 +1,20 @@
+#include "systems/update/lumped_mass.hpp"
+
+namespace loom {
+
+void compute_lumped_mass(const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
+                         const std::vector<BodyMaterial>& materials, Nodes<2>& nodes) {
+  nodes.lumped_mass.assign(nodes.size(), 0.0);
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    const Cells& cb = cells[b];
+    const QuadPoints<2>& qb = quad[b];
+    for (Index c = 0; c < cb.size(); ++c) {  // serial: scatter to shared nodes, done once
+      double volume0 = 0.0;
+      for (int q = 0; q < qb.per_cell; ++q) volume0 += qb.weight_n[c * qb.per_cell + q] / qb.F_n[c * qb.per_cell + q].determinant();
+      const double m = materials[std::size_t(cb.body[c])].density * volume0 / cb.stride;
+      for (int a = 0; a < cb.stride; ++a) nodes.lumped_mass[cb.node(c, a)] += m;
+    }
+  }
+}
+
+}  // namespace loom

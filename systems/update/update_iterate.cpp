@@ -1,0 +1,18 @@
+#include "systems/update/update_iterate.hpp"
+
+#include "engine/core/parallel.hpp"
+
+namespace loom {
+
+void update_iterate(double step, const LinearSystem& system, Nodes<2>& nodes) {
+  const int pn = system.dofs.per_node;
+  for_each_index(nodes.size(), [&](Index i) {
+    for (int d = 0; d < 2; ++d) nodes.u[i][d] += step * system.increment_full[i * pn + d];
+  });
+}
+
+void reset_iterate(Nodes<2>& nodes) {
+  for_each_index(nodes.size(), [&](Index i) { nodes.u[i] = nodes.u_n[i]; });
+}
+
+}  // namespace loom

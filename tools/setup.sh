@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs loom's Debian 12 dependencies (idempotent) and builds into build/.
+# Usage: tools/setup.sh [--no-build]   Environment: LOOM_BUILD_TYPE (default Release), LOOM_JOBS.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libtbb-dev libcgal-dev libsuitesparse-dev libopenblas0-pthread
+  libvtk9-dev libbenchmark-dev libgtest-dev libgmock-dev libtomlplusplus-dev libmuparser-dev
+  python3 python3-numpy python3-matplotlib python3-vtk9
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}" >&2
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+[ "${1:-}" = "--no-build" ] && exit 0
+cmake -S . -B build -DCMAKE_BUILD_TYPE="${LOOM_BUILD_TYPE:-Release}" >/dev/null
+cmake --build build -j "${LOOM_JOBS:-$(nproc)}"
