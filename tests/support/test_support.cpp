@@ -1,0 +1,102 @@
+#include "tests/support/test_support.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "engine/scene/scene_loader.hpp"
+
+namespace loom::testing {
+
+SceneSpec scene_from_text(const std::string& text, const std::vector<std::string>& overrides) {
+  return load_scene_text(text, "test.toml", overrides);
+}
+
+std::unique_ptr<FemRun> make_fem_run(const SceneSpec& scene, const std::string& out) {
+  RunOptions options;
+  options.output_directory = out;
+  options.write_files = !out.empty();
+  options.progress = false;
+  return std::make_unique<FemRun>(scene, options);
+}
+
+namespace {
+std::string quote(const std::string& s) {
+  std::string r = "'";
+  for (char c : s) r += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return r + "'";
+}
+}  // namespace
+
+Command run_loom(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const std::string base = std::filesystem::temp_directory_path().string() + "/loom_cmd_" + std::to_string(getpid()) + "_" +
+                           std::to_string(counter++);
+  std::string cmd = quote(LOOM_BINARY);
+  for (const auto& a : args) cmd += " " + quote(a);
+  cmd += " >" + quote(base + ".out") + " 2>" + quote(base + ".err");
+  const int status = std::system(cmd.c_str());
+  Command c;
+  c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  c.out = read_text(base + ".out");
+  c.err = read_text(base + ".err");
+  std::filesystem::remove(base + ".out");
+  std::filesystem::remove(base + ".err");
+  return c;
+}
+
+TempDir::TempDir(const std::string& name) {
+  path_ = std::filesystem::temp_directory_path().string() + "/loom_test_" + name + "_" + std::to_string(getpid());
+  std::filesystem::remove_all(path_);
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<double> ProbeTable::column(const std::string& name) const {
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == name) {
+      std::vector<double> c;
+      for (const auto& r : rows) c.push_back(r[k]);
+      return c;
+    }
+  throw std::runtime_error("no probe column " + name);
+}
+
+ProbeTable read_probes(const std::string& path) {
+  ProbeTable t;
+  std::istringstream in(read_text(path));
+  std::string line;
+  if (!std::getline(in, line)) return t;
+  std::istringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');) t.names.push_back(cell);
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::vector<double> values;
+    for (std::string cell; std::getline(row, cell, ',');) values.push_back(std::stod(cell));
+    t.rows.push_back(values);
+  }
+  return t;
+}
+
+}  // namespace loom::testing
