@@ -100,7 +100,8 @@ void distort_interior_nodes(MeshData& mesh, double fraction, std::uint64_t seed)
   const Index n = Index(mesh.X.size());
   std::vector<char> on_boundary(std::size_t(n), 0);
   for (const auto& e : boundary_edges(mesh.triangles, 3)) on_boundary[std::size_t(e.a)] = on_boundary[std::size_t(e.b)] = 1;
-  // Local edge length: shortest edge at the node, so that no triangle can invert for fraction < 0.5.
+  // Local edge length: shortest edge at the node. This does not rule out inversion: a right isosceles cell
+  // can invert once fraction > 1/(2 sqrt 2) ~ 0.35 (its altitude is 0.71 of a leg), so callers check areas.
   std::vector<double> h(std::size_t(n), std::numeric_limits<double>::max());
   for (Index t = 0; t < mesh.n_triangles(); ++t)
     for (int k = 0; k < 3; ++k) {

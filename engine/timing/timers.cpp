@@ -1,6 +1,7 @@
 #include "engine/timing/timers.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <iomanip>
 #include <vector>
 
@@ -26,12 +27,21 @@ void Timers::clear() {
 
 void Timers::print_table(std::ostream& os, double wall) const {
   const auto stats = snapshot();
-  // Top-level entries by total time, each followed by its children (by total time).
-  std::vector<std::pair<std::string, TimerStats>> top;
-  for (const auto& e : stats)
-    if (e.first.find('/') == std::string::npos) top.push_back(e);
+  auto parent_of = [](const std::string& name) {
+    const auto slash = name.rfind('/');
+    return slash == std::string::npos ? std::string() : name.substr(0, slash);
+  };
+  // Roots by total time, each followed by its children (by total time, recursively). A root is an entry
+  // whose parent is not timed itself ("writer/flush" without "writer"): it is shown under its full name,
+  // so that no timer is left out of the table.
   auto by_total = [](const auto& a, const auto& b) { return a.second.total > b.second.total; };
-  std::sort(top.begin(), top.end(), by_total);
+  auto children_of = [&](const std::string& parent) {
+    std::vector<std::pair<std::string, TimerStats>> r;
+    for (const auto& e : stats)
+      if (parent.empty() ? !stats.count(parent_of(e.first)) : parent_of(e.first) == parent) r.push_back(e);
+    std::sort(r.begin(), r.end(), by_total);
+    return r;
+  };
   const auto flags = os.flags();
   os << std::left << std::setw(34) << "system" << std::right << std::setw(9) << "calls" << std::setw(12) << "total s"
      << std::setw(12) << "mean ms" << std::setw(12) << "max ms" << std::setw(9) << "share" << "\n";
@@ -41,14 +51,14 @@ void Timers::print_table(std::ostream& os, double wall) const {
        << 1e3 * s.max << std::setw(8) << std::setprecision(1) << (wall > 0 ? 100.0 * s.total / wall : 0.0) << "%\n";
     os.unsetf(std::ios::fixed);
   };
-  for (const auto& [name, s] : top) {
-    row(name, s);
-    std::vector<std::pair<std::string, TimerStats>> children;
-    for (const auto& e : stats)
-      if (e.first.rfind(name + "/", 0) == 0 && e.first.find('/', name.size() + 1) == std::string::npos) children.push_back(e);
-    std::sort(children.begin(), children.end(), by_total);
-    for (const auto& [cname, cs] : children) row("  " + cname.substr(name.size() + 1), cs);
-  }
+  std::function<void(const std::string&, const TimerStats&, const std::string&)> print = [&](const std::string& name,
+                                                                                          const TimerStats& s,
+                                                                                          const std::string& indent) {
+    const std::string parent = parent_of(name);
+    row(indent + (indent.empty() ? name : name.substr(parent.size() + 1)), s);
+    for (const auto& [child, cs] : children_of(name)) print(child, cs, indent + "  ");
+  };
+  for (const auto& [name, s] : children_of("")) print(name, s, "");
   os.flags(flags);
 }
 

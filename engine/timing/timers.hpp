@@ -24,7 +24,8 @@ class Timers {
   void clear();
 
   // The table printed at the end of a run: calls, total, mean, max and share of `wall` seconds, for the
-  // top-level entries (no '/') and their children indented below them.
+  // top-level entries (no '/') and their children indented below them, recursively; a sub-timer whose
+  // parent is not timed is listed under its full name.
   void print_table(std::ostream& os, double wall) const;
   // {"wall": w, "timers": {"name": {"calls": .., "total": .., "mean": .., "max": ..}, ...}}
   void write_json(std::ostream& os, double wall) const;

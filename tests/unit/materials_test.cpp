@@ -1,0 +1,220 @@
+// Materials (systems/assemble/materials): the stress is the derivative of the strain energy and the 9x9
+// tangent the derivative of the stress, both checked by central finite differences of energies written
+// here from their formulas (seed 000 eq 48-51; small-strain Hooke), at random F with det F > 0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "systems/assemble/materials/material.hpp"
+
+namespace loom {
+namespace {
+
+constexpr double kLambda = 2.3, kMu = 0.7;
+
+// seed 000 eq (48): psi_0 = lambda/2 ln^2 J + mu/2 (F:F - 3) - mu ln J
+double neo_hooke_energy(const Mat3& F, double lambda, double mu) {
+  const double lnJ = std::log(F.determinant());
+  return 0.5 * lambda * lnJ * lnJ + 0.5 * mu * (F.squaredNorm() - 3.0) - mu * lnJ;
+}
+
+// Small strain: psi = lambda/2 tr(eps)^2 + mu eps:eps with eps = sym(F) - I.
+double linear_elastic_energy(const Mat3& F, double lambda, double mu) {
+  const Mat3 eps = 0.5 * (F + F.transpose()) - Mat3::Identity();
+  return 0.5 * lambda * eps.trace() * eps.trace() + mu * eps.squaredNorm();
+}
+
+Mat3 unit(int k, int l) {
+  Mat3 E = Mat3::Zero();
+  E(k, l) = 1.0;
+  return E;
+}
+
+template <class Energy>
+Mat3 energy_derivative(const Energy& psi, const Mat3& F, double h = 1e-5) {
+  Mat3 P;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) P(k, l) = (psi(F + h * unit(k, l)) - psi(F - h * unit(k, l))) / (2 * h);
+  return P;
+}
+
+template <class MaterialT>
+Mat9 stress_derivative(const MaterialT& m, const Mat3& F, double h = 1e-6) {
+  Mat9 A;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      Mat3 Pp, Pm;
+      EXPECT_TRUE(m.stress(F + h * unit(k, l), Pp));
+      EXPECT_TRUE(m.stress(F - h * unit(k, l), Pm));
+      const Mat3 dP = (Pp - Pm) / (2 * h);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) A(ij(i, j), ij(k, l)) = dP(i, j);
+    }
+  return A;
+}
+
+// Random deformation gradients with det F > 0.5: plane strain (F33 = 1, no out-of-plane shear) or general.
+std::vector<Mat3> random_deformations(bool plane_strain, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-0.4, 0.4);
+  std::vector<Mat3> r;
+  while (int(r.size()) < n) {
+    Mat3 F = Mat3::Identity();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) F(i, j) += d(rng);
+    if (plane_strain) F.row(2) = Vec3(0, 0, 1).transpose(), F.col(2) = Vec3(0, 0, 1);
+    if (F.determinant() > 0.5) r.push_back(F);
+  }
+  return r;
+}
+
+double relative_error(const Eigen::MatrixXd& a, const Eigen::MatrixXd& reference) {
+  return (a - reference).norm() / reference.norm();
+}
+
+struct Case {
+  bool plane_strain;
+  unsigned seed;
+};
+const Case kCases[] = {{true, 11}, {false, 12}};
+
+}  // namespace
+
+TEST(NeoHooke, StressIsTheDerivativeOfTheEnergy) {
+  const NeoHooke m{kLambda, kMu};
+  for (const Case& c : kCases)
+    for (const Mat3& F : random_deformations(c.plane_strain, 5, c.seed)) {
+      Mat3 P;
+      ASSERT_TRUE(m.stress(F, P));
+      const Mat3 P_fd = energy_derivative([](const Mat3& G) { return neo_hooke_energy(G, kLambda, kMu); }, F);
+      EXPECT_LE(relative_error(P, P_fd), 1e-6) << "F =\n" << F;
+    }
+}
+
+TEST(NeoHooke, TangentIsTheDerivativeOfTheStress) {
+  for (const double lambda : {kLambda, 1e3}) {  // compressible and nearly incompressible
+    const NeoHooke m{lambda, kMu};
+    for (const Case& c : kCases)
+      for (const Mat3& F : random_deformations(c.plane_strain, 5, c.seed)) {
+        Mat3 P, P_stress;
+        Mat9 A;
+        ASSERT_TRUE(m.stress_tangent(F, P, A));
+        ASSERT_TRUE(m.stress(F, P_stress));
+        EXPECT_LE((P - P_stress).norm(), 1e-14 * P.norm());  // both entry points agree
+        EXPECT_LE(relative_error(A, stress_derivative(m, F)), 1e-6) << "lambda = " << lambda << ", F =\n" << F;
+      }
+  }
+}
+
+TEST(NeoHooke, IsStressFreeAtTheIdentity) {
+  const NeoHooke m{kLambda, kMu};
+  Mat3 P;
+  ASSERT_TRUE(m.stress(Mat3::Identity(), P));
+  EXPECT_LE(P.norm(), 1e-15);
+}
+
+TEST(NeoHooke, TangentAtTheIdentityIsHookesTensor) {
+  const NeoHooke nh{kLambda, kMu};
+  Mat3 P;
+  Mat9 A;
+  ASSERT_TRUE(nh.stress_tangent(Mat3::Identity(), P, A));
+  Mat9 hooke;  // lambda d_ij d_kl + mu (d_ik d_jl + d_il d_jk)
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          hooke(ij(i, j), ij(k, l)) = kLambda * (i == j) * (k == l) + kMu * ((i == k) * (j == l) + (i == l) * (j == k));
+  EXPECT_LE((A - hooke).norm(), 1e-14);
+}
+
+TEST(NeoHooke, RejectsNonPositiveJacobian) {
+  const NeoHooke m{kLambda, kMu};
+  Mat3 P;
+  Mat9 A;
+  const Mat3 inverted = Vec3(-1.0, 1.0, 1.0).asDiagonal();
+  const Mat3 flat = Vec3(1.0, 0.0, 1.0).asDiagonal();
+  EXPECT_FALSE(m.stress(inverted, P));
+  EXPECT_FALSE(m.stress(flat, P));
+  EXPECT_FALSE(m.stress_tangent(inverted, P, A));
+  EXPECT_FALSE(m.stress_tangent(flat, P, A));
+  Mat3 sigma;
+  EXPECT_FALSE(cauchy_stress(Material(m), inverted, sigma));
+}
+
+TEST(NeoHooke, CauchyStressIsSymmetricAndMatchesTheSpatialForm) {
+  const NeoHooke m{kLambda, kMu};
+  for (const Case& c : kCases)
+    for (const Mat3& F : random_deformations(c.plane_strain, 5, c.seed + 100)) {
+      Mat3 sigma;
+      ASSERT_TRUE(cauchy_stress(Material(m), F, sigma));
+      EXPECT_LE((sigma - sigma.transpose()).norm(), 1e-13 * sigma.norm());
+      // sigma = (mu (b - I) + lambda ln J I) / J, b = F F^T
+      const double J = F.determinant();
+      const Mat3 expected = (kMu * (F * F.transpose() - Mat3::Identity()) + kLambda * std::log(J) * Mat3::Identity()) / J;
+      EXPECT_LE((sigma - expected).norm(), 1e-13 * expected.norm());
+    }
+}
+
+TEST(LinearElastic, StressIsTheDerivativeOfTheEnergy) {
+  const LinearElastic m{kLambda, kMu};
+  for (const Case& c : kCases)
+    for (const Mat3& F : random_deformations(c.plane_strain, 5, c.seed)) {
+      Mat3 P;
+      ASSERT_TRUE(m.stress(F, P));
+      const Mat3 P_fd = energy_derivative([](const Mat3& G) { return linear_elastic_energy(G, kLambda, kMu); }, F);
+      EXPECT_LE(relative_error(P, P_fd), 1e-6) << "F =\n" << F;
+    }
+}
+
+TEST(LinearElastic, TangentIsTheDerivativeOfTheStress) {
+  const LinearElastic m{kLambda, kMu};
+  for (const Case& c : kCases)
+    for (const Mat3& F : random_deformations(c.plane_strain, 5, c.seed)) {
+      Mat3 P;
+      Mat9 A;
+      ASSERT_TRUE(m.stress_tangent(F, P, A));
+      EXPECT_LE(relative_error(A, stress_derivative(m, F)), 1e-6) << "F =\n" << F;
+    }
+}
+
+TEST(LinearElastic, IsStressFreeAtTheIdentityAndUnderInfinitesimalRotation) {
+  const LinearElastic m{kLambda, kMu};
+  Mat3 P;
+  ASSERT_TRUE(m.stress(Mat3::Identity(), P));
+  EXPECT_LE(P.norm(), 1e-15);
+  Mat3 W = Mat3::Zero();  // skew: F = I + W has no small strain
+  W(0, 1) = 0.1, W(1, 0) = -0.1;
+  ASSERT_TRUE(m.stress(Mat3::Identity() + W, P));
+  EXPECT_LE(P.norm(), 1e-15);
+}
+
+TEST(LinearElastic, UniaxialStrainGivesTheConstrainedModulus) {
+  const LinearElastic m{kLambda, kMu};
+  const double e = 1e-3;
+  Mat3 F = Mat3::Identity();
+  F(0, 0) += e;
+  Mat3 sigma;
+  ASSERT_TRUE(cauchy_stress(Material(m), F, sigma));
+  EXPECT_NEAR(sigma(0, 0), (kLambda + 2 * kMu) * e, 1e-15);
+  EXPECT_NEAR(sigma(1, 1), kLambda * e, 1e-15);
+  EXPECT_NEAR(sigma(2, 2), kLambda * e, 1e-15);
+  EXPECT_EQ(sigma(0, 1), 0.0);
+}
+
+TEST(MakeMaterial, MapsTheModelAndLameConstants) {
+  MaterialSpec spec;
+  spec.model = MaterialModel::linear_elastic;
+  spec.lambda = 3.0, spec.mu = 4.0;
+  const Material le = make_material(spec);
+  ASSERT_TRUE(std::holds_alternative<LinearElastic>(le));
+  EXPECT_EQ(std::get<LinearElastic>(le).lambda, 3.0);
+  EXPECT_EQ(std::get<LinearElastic>(le).mu, 4.0);
+  spec.model = MaterialModel::neo_hooke;
+  const Material nh = make_material(spec);
+  ASSERT_TRUE(std::holds_alternative<NeoHooke>(nh));
+  EXPECT_EQ(std::get<NeoHooke>(nh).mu, 4.0);
+}
+
+}  // namespace loom

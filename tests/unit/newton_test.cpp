@@ -1,0 +1,214 @@
+// Newton driver (engine/drivers/newton): quadratic convergence on a smooth toy problem, failures reported
+// (singular tangent, divergence, inadmissible iterates), and the backtracking line search rescuing
+// problems where full steps overshoot.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "engine/drivers/newton.hpp"
+
+namespace loom {
+namespace {
+
+// A small dense nonlinear system r(x) = 0 with Jacobian J(x); x is admissible where `admissible` holds.
+class ToyProblem : public NonlinearProblem {
+ public:
+  using Vector = Eigen::VectorXd;
+  using Matrix = Eigen::MatrixXd;
+  std::function<Vector(const Vector&)> r_of;
+  std::function<Matrix(const Vector&)> J_of;
+  std::function<bool(const Vector&)> admissible = [](const Vector&) { return true; };
+  std::function<bool(int updates)> pending = [](int) { return false; };
+
+  Vector x, x_start, r, du;
+  Matrix J;
+  int updates = 0;
+
+  ToyProblem(Vector x0, std::function<Vector(const Vector&)> r_fn, std::function<Matrix(const Vector&)> J_fn)
+      : r_of(std::move(r_fn)), J_of(std::move(J_fn)), x(x0), x_start(std::move(x0)) {}
+
+  bool assemble(bool with_tangent) override {
+    if (!admissible(x)) return false;
+    r = r_of(x);
+    if (with_tangent) J = J_of(x);
+    return true;
+  }
+  double residual_norm() const override { return r.norm(); }
+  bool solve() override {
+    Eigen::FullPivLU<Matrix> lu(J);
+    if (!lu.isInvertible()) return false;
+    du = lu.solve(-r);
+    return true;
+  }
+  void update(double step) override {
+    x += step * du;
+    ++updates;
+  }
+  double increment_norm() const override { return du.norm(); }
+  double step_change_norm() const override { return (x - x_start).norm(); }
+  bool prescribed_pending() const override { return pending(updates); }
+};
+
+Eigen::VectorXd vec(std::initializer_list<double> v) {
+  Eigen::VectorXd x(Eigen::Index(v.size()));
+  Eigen::Index i = 0;
+  for (double e : v) x(i++) = e;
+  return x;
+}
+
+ToyProblem scalar(double x0, std::function<double(double)> f, std::function<double(double)> df) {
+  return ToyProblem(
+      vec({x0}), [f](const Eigen::VectorXd& x) { return vec({f(x(0))}); },
+      [df](const Eigen::VectorXd& x) { return Eigen::MatrixXd::Constant(1, 1, df(x(0))); });
+}
+
+// Only the absolute residual decides, so the rate is seen down to round-off.
+NewtonSettings strict(bool line_search = false) {
+  NewtonSettings s;
+  s.residual_absolute = 1e-13;
+  s.residual_relative = 0.0;
+  s.increment_relative = 0.0;
+  s.line_search = line_search;
+  return s;
+}
+
+}  // namespace
+
+TEST(SolveNewton, ConvergesQuadraticallyOnASmoothSystem) {
+  // Circle of radius 2 cut by the diagonal: root (sqrt 2, sqrt 2).
+  ToyProblem p(
+      vec({3.0, 0.5}),
+      [](const Eigen::VectorXd& x) { return vec({x(0) * x(0) + x(1) * x(1) - 4.0, x(0) - x(1)}); },
+      [](const Eigen::VectorXd& x) {
+        Eigen::MatrixXd J(2, 2);
+        J << 2 * x(0), 2 * x(1), 1, -1;
+        return J;
+      });
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(), timers);
+  ASSERT_TRUE(rep.converged) << rep.failure;
+  EXPECT_NEAR(p.x(0), std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(p.x(1), std::sqrt(2.0), 1e-12);
+  EXPECT_LE(rep.iterations, 8);
+  ASSERT_EQ(rep.residuals.size(), std::size_t(rep.iterations) + 1);
+  // Quadratic rate: r_{k+1} <= C r_k^2 once in the basin (r_k < 0.1), above round-off.
+  int checked = 0;
+  for (std::size_t k = 0; k + 1 < rep.residuals.size(); ++k) {
+    const double rk = rep.residuals[k], rk1 = rep.residuals[k + 1];
+    if (rk > 0.1 || rk1 < 1e-14) continue;
+    EXPECT_LE(rk1, 2.0 * rk * rk) << "iteration " << k;
+    ++checked;
+  }
+  EXPECT_GE(checked, 2);
+  // The driver times its phases.
+  const auto stats = timers.snapshot();
+  EXPECT_EQ(stats.at("newton/solve").calls, rep.iterations);
+  EXPECT_EQ(stats.at("newton/assemble").calls, rep.iterations + 1);
+}
+
+TEST(SolveNewton, AConvergedStartNeedsNoSolve) {
+  ToyProblem p = scalar(1.0, [](double x) { return x * x - 1.0; }, [](double x) { return 2 * x; });
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(), timers);
+  EXPECT_TRUE(rep.converged);
+  EXPECT_EQ(rep.iterations, 0);
+  EXPECT_EQ(p.updates, 0);
+}
+
+TEST(SolveNewton, PendingPrescribedValuesForceAnIteration) {
+  // The residual is already zero but a prescribed value still lags: one solve and update are needed.
+  ToyProblem p = scalar(1.0, [](double x) { return x * x - 1.0; }, [](double x) { return 2 * x; });
+  p.pending = [](int updates) { return updates == 0; };
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(), timers);
+  EXPECT_TRUE(rep.converged);
+  EXPECT_EQ(rep.iterations, 1);
+}
+
+TEST(SolveNewton, ReportsASingularTangent) {
+  // r = x^2 - 1 from x = 0: the tangent 2x vanishes.
+  ToyProblem p = scalar(0.0, [](double x) { return x * x - 1.0; }, [](double x) { return 2 * x; });
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(), timers);
+  EXPECT_FALSE(rep.converged);
+  EXPECT_EQ(rep.iterations, 0);
+  EXPECT_NE(rep.failure.find("singular"), std::string::npos) << rep.failure;
+}
+
+TEST(SolveNewton, FullStepsDivergeOnArctanFromTwo) {
+  // atan(x) = 0 from x = 2: Newton overshoots further every step (|x0| > 1.39...).
+  ToyProblem p = scalar(2.0, [](double x) { return std::atan(x); }, [](double x) { return 1.0 / (1.0 + x * x); });
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(false), timers);
+  EXPECT_FALSE(rep.converged);
+  EXPECT_FALSE(rep.failure.empty());
+  ASSERT_GE(rep.residuals.size(), 2u);
+  EXPECT_GT(rep.residuals.back(), rep.residuals.front());  // it went the wrong way
+}
+
+TEST(SolveNewton, LineSearchConvergesOnArctanFromTwo) {
+  ToyProblem p = scalar(2.0, [](double x) { return std::atan(x); }, [](double x) { return 1.0 / (1.0 + x * x); });
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(true), timers);
+  ASSERT_TRUE(rep.converged) << rep.failure;
+  EXPECT_NEAR(p.x(0), 0.0, 1e-12);
+  // Every accepted iterate decreased the residual.
+  for (std::size_t k = 0; k + 1 < rep.residuals.size(); ++k) EXPECT_LT(rep.residuals[k + 1], rep.residuals[k]);
+}
+
+TEST(SolveNewton, InadmissibleIterateFailsWithoutLineSearch) {
+  // ln x = 0 from x = 3: the full step lands at x = 3 - 3 ln 3 < 0, where ln is undefined (like J <= 0).
+  ToyProblem p = scalar(3.0, [](double x) { return std::log(x); }, [](double x) { return 1.0 / x; });
+  p.admissible = [](const Eigen::VectorXd& x) { return x(0) > 0.0; };
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(false), timers);
+  EXPECT_FALSE(rep.converged);
+  EXPECT_NE(rep.failure.find("invert"), std::string::npos) << rep.failure;
+}
+
+TEST(SolveNewton, LineSearchBacksOutOfAnInadmissibleIterate) {
+  ToyProblem p = scalar(3.0, [](double x) { return std::log(x); }, [](double x) { return 1.0 / x; });
+  p.admissible = [](const Eigen::VectorXd& x) { return x(0) > 0.0; };
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(true), timers);
+  ASSERT_TRUE(rep.converged) << rep.failure;
+  EXPECT_NEAR(p.x(0), 1.0, 1e-12);
+}
+
+TEST(SolveNewton, InadmissibleStartIsReported) {
+  ToyProblem p = scalar(-1.0, [](double x) { return std::log(x); }, [](double x) { return 1.0 / x; });
+  p.admissible = [](const Eigen::VectorXd& x) { return x(0) > 0.0; };
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, strict(true), timers);
+  EXPECT_FALSE(rep.converged);
+  EXPECT_EQ(rep.iterations, 0);
+  EXPECT_FALSE(rep.failure.empty());
+}
+
+TEST(SolveNewton, GivesUpAfterMaxIterations) {
+  // A wrong (halved) tangent converges only linearly: 3 iterations are not enough.
+  ToyProblem p = scalar(1.5, [](double x) { return x - 1.0; }, [](double) { return 2.0; });
+  NewtonSettings s = strict();
+  s.max_iterations = 3;
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, s, timers);
+  EXPECT_FALSE(rep.converged);
+  EXPECT_EQ(rep.iterations, 3);
+  EXPECT_NE(rep.failure.find("3 iterations"), std::string::npos) << rep.failure;
+}
+
+TEST(SolveNewton, RelativeResidualCriterion) {
+  ToyProblem p = scalar(1.5, [](double x) { return x - 1.0; }, [](double) { return 2.0; });
+  NewtonSettings s = strict();
+  s.residual_relative = 0.1;  // residuals halve: 0.5, 0.25, 0.125, 0.0625 <= 0.05? no; 0.03125 yes
+  s.residual_absolute = 0.0;
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, s, timers);
+  EXPECT_TRUE(rep.converged);
+  EXPECT_EQ(rep.iterations, 4);
+}
+
+}  // namespace loom
