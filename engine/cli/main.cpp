@@ -93,9 +93,13 @@ int run(const Args& a) {
     if (!a.quiet) method->timers().print_table(std::cout, summary.wall_seconds);
   }
   if (!summary.converged) {
+    // The last converged state may lie inside the failed step (converged sub-steps before a cut-back gave up).
+    const double step_end = summary.last_converged_step * scene.time.dt;
     std::cerr << "loom: the run failed: " << summary.failure << "\n"
-              << "loom: last converged step " << summary.last_converged_step << " (t = " << summary.last_converged_time
-              << "); the output written so far is in " << options.output_directory << "\n";
+              << "loom: last converged step " << summary.last_converged_step << " (t = " << step_end << ")";
+    if (summary.last_converged_time > step_end * (1 + 1e-12) + 1e-300)
+      std::cerr << "; sub-steps of the failed step converged up to t = " << summary.last_converged_time;
+    std::cerr << "; the output written so far is in " << options.output_directory << "\n";
     return 1;
   }
   if (!a.quiet)

@@ -46,8 +46,13 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
   node_body_ = build_mesh(scene_, nodes_, cells_);
   materials_ = body_materials(scene_);
   allocate_quad_points(cells_, quad_);
-  LOOM_CHECK(compute_geometry(nodes_, cells_, quad_) == 0, InputError,
-             scene_.file << ": error: body mesh: the generated mesh has inverted or degenerate cells (distortion too large?)");
+  if (compute_geometry(nodes_, cells_, quad_) != 0) {
+    // compute_geometry does not say which body: with one body, point at its mesh.
+    std::ostringstream where;
+    if (scene_.bodies.size() == 1) where << scene_.bodies[0].mesh.where << ": error: body[0].mesh";
+    else where << scene_.file << ": error: body mesh";
+    throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (distortion, size or scale too extreme?)");
+  }
   if (nodes_.lumped_mass.used()) compute_lumped_mass(cells_, quad_, materials_, nodes_);
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
@@ -196,10 +201,12 @@ RunSummary FemRun::run() {
     }
   };
   TimeLoopResult result;
+  bool anomaly = false;  // a system threw (no cut-back is tried), as opposed to Newton giving up
   try {
     result = run_time_loop(scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, ctx_, *graph_, status_, callbacks);
   } catch (const RunError& e) {
     // An anomaly in a system (not a Newton failure): the run stops, the output so far stays valid.
+    anomaly = true;
     result.completed = false;
     result.failed_step = ctx_.step;
     result.failed_dt = ctx_.dt;
@@ -227,8 +234,11 @@ RunSummary FemRun::run() {
   summary.linear_solver = solver_.backend();
   if (!result.completed) {
     std::ostringstream os;
-    os << "step " << result.failed_step << " did not converge after " << scene_.solver.max_cutbacks << " cut-backs (last dt "
-       << result.failed_dt << "): " << result.failure;
+    if (anomaly)
+      os << "step " << result.failed_step << " stopped: " << result.failure;
+    else
+      os << "step " << result.failed_step << " did not converge after " << scene_.solver.max_cutbacks << " cut-backs (last dt "
+         << result.failed_dt << "): " << result.failure;
     summary.failure = os.str();
   }
   wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,6 +1,7 @@
 #include "engine/scene/scene_loader.hpp"
 
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -269,10 +270,10 @@ class Loader {
       const auto& mat = s.materials[std::size_t(body.material)];
       if (mat.density > 0) continue;
       if (s.time.integrator != Integrator::static_)
-        diag_.error(mat.where, "material." + mat.name + ".density",
+        diag_.error(mat.where, "material[" + std::to_string(body.material) + "].density",
                     "density must be > 0 for the dynamic integrator (used by body \"" + body.name + "\")");
       else if (global_force || body.body_force.x || body.body_force.y)
-        diag_.error(mat.where, "material." + mat.name + ".density",
+        diag_.error(mat.where, "material[" + std::to_string(body.material) + "].density",
                     "density must be > 0: a body force acts on body \"" + body.name + "\"");
     }
   }
@@ -317,6 +318,8 @@ SceneSpec load_scene_text(const std::string& text, const std::string& file, cons
 }
 
 SceneSpec load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  LOOM_CHECK(!std::filesystem::is_directory(file, ec), InputError, file << ": error: cannot read the scene file: it is a directory");
   std::ifstream in(file, std::ios::binary);
   LOOM_CHECK(in, InputError, file << ": error: cannot read the scene file");
   std::ostringstream text;

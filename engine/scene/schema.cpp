@@ -166,10 +166,16 @@ void print_schema(std::ostream& os, bool markdown) {
     return t;
   };
   if (markdown) {
+    // A '|' inside a cell (|r| in a doc) would end the cell: escape it.
+    auto cell = [](const std::string& text) {
+      std::string r;
+      for (char c : text) r += c == '|' ? std::string("\\|") : std::string(1, c);
+      return r;
+    };
     os << "| key | type | default | meaning |\n| --- | --- | --- | --- |\n";
     for (const auto& k : scene_schema())
-      os << "| `" << k.path << "` | " << type_text(k) << " | " << (k.required ? "required" : k.default_value.empty() ? "-" : "`" + k.default_value + "`")
-         << " | " << k.doc << " |\n";
+      os << "| `" << k.path << "` | " << cell(type_text(k)) << " | " << (k.required ? "required" : k.default_value.empty() ? "-" : "`" + k.default_value + "`")
+         << " | " << cell(k.doc) << " |\n";
     return;
   }
   for (const auto& k : scene_schema()) {

@@ -1,6 +1,8 @@
 #include "engine/scene/schema_validator.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -63,12 +65,15 @@ std::string known_keys(const std::string& parent) {
 std::string describe(const toml::node& n) {
   std::ostringstream os;
   if (n.is_table()) return "a table";
-  if (n.is_array()) return "an array";
+  if (n.is_array()) return "an array of " + std::to_string(n.as_array()->size()) + " values";
   if (n.is_string()) return "the string \"" + n.as_string()->get() + "\"";
   if (n.is_boolean()) return n.as_boolean()->get() ? "true" : "false";
   if (n.is_integer()) return "the integer " + std::to_string(n.as_integer()->get());
   if (n.is_floating_point()) {
-    os << "the number " << n.as_floating_point()->get();
+    // A whole number is shown with its decimal point: "expected integer, got 2" would read as a riddle.
+    const double v = n.as_floating_point()->get();
+    os << "the floating-point number " << v;
+    if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15) os << ".0";
     return os.str();
   }
   return "a date or time";
@@ -128,7 +133,31 @@ class Validator {
     diag_.error(source_of(n, file_), display, std::string("expected ") + value_kind_name(spec.kind) + ", got " + describe(n));
   }
 
+  // TOML has nan and inf literals, and integers beyond the int the loader reads them into.
+  bool representable(const toml::node& n, double v, const KeySpec& spec, const std::string& display) {
+    std::ostringstream os;
+    if (!std::isfinite(v)) {
+      os << "must be a finite number, got " << v;
+    } else if (n.is_integer() && (spec.kind == ValueKind::integer || spec.kind == ValueKind::ivec2) &&
+               (v > std::numeric_limits<int>::max() || v < std::numeric_limits<int>::min())) {
+      os << "must be at most " << std::numeric_limits<int>::max() << " in magnitude, got " << n.as_integer()->get();
+    } else {
+      return true;
+    }
+    diag_.error(source_of(n, file_), display, os.str());
+    return false;
+  }
+  // Every number inside an array value (vec2, box) must be finite.
+  void finite_elements(const toml::node& n, const KeySpec& spec, const std::string& display) {
+    if (const auto* a = n.as_array()) {
+      for (const auto& e : *a) finite_elements(e, spec, display);
+    } else if (is_number(n)) {
+      representable(n, number_of(n), spec, display);
+    }
+  }
+
   void range(const toml::node& n, double v, const KeySpec& spec, const std::string& display) {
+    if (!representable(n, v, spec, display)) return;
     const bool low = spec.lower && (spec.lower_open ? v <= *spec.lower : v < *spec.lower);
     const bool high = spec.upper && (spec.upper_open ? v >= *spec.upper : v > *spec.upper);
     if (low || high) {
@@ -176,8 +205,8 @@ class Validator {
         if (!n.is_string() && !is_number(n)) wrong_type(n, spec, display);
         return;
       case ValueKind::vec2:
-        if (!is_number_pair(n, false)) wrong_type(n, spec, display);
-        return;
+        if (!is_number_pair(n, false)) return wrong_type(n, spec, display);
+        return finite_elements(n, spec, display);
       case ValueKind::ivec2:
         if (!is_number_pair(n, true)) return wrong_type(n, spec, display);
         for (const auto& e : *n.as_array()) range(e, number_of(e), spec, display);
@@ -185,8 +214,8 @@ class Validator {
       case ValueKind::box: {
         const auto* a = n.as_array();
         if (!a || a->size() != 2 || !is_number_pair((*a)[0], false) || !is_number_pair((*a)[1], false))
-          wrong_type(n, spec, display);
-        return;
+          return wrong_type(n, spec, display);
+        return finite_elements(n, spec, display);
       }
     }
   }

@@ -1,0 +1,236 @@
+// The files of a run read back as a user's tools would read them (DESIGN §6): the .pvd collection and
+// every .vtu through VTK's own reader, probes.csv, run.json and timings.json; no temporary file left.
+#include <gtest/gtest.h>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "engine/methods/build_mesh.hpp"
+#include "engine/scene/scene_loader.hpp"
+#include "tests/scenes/scene_checks.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace loom::testing {
+namespace {
+
+const std::string kCook = std::string(LOOM_SOURCE_DIR) + "/scenes/cooks_membrane_linear.toml";
+const std::string kPvd = "cooks-membrane-linear.pvd";
+
+struct VtuFrame {
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  vtkDataArray* point(const char* name) const { return grid->GetPointData()->GetArray(name); }
+  vtkDataArray* cell(const char* name) const { return grid->GetCellData()->GetArray(name); }
+};
+
+VtuFrame read_vtu(const std::string& path) {
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  EXPECT_TRUE(reader->CanReadFile(path.c_str())) << path;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  EXPECT_EQ(reader->GetErrorCode(), 0) << path;
+  VtuFrame f;
+  f.grid = reader->GetOutput();
+  return f;
+}
+
+double relative_gap(double a, double b) { return std::abs(a - b) / std::max(1.0, std::max(std::abs(a), std::abs(b))); }
+
+// Reference coordinates of the scene's mesh, generated again from the spec (not read from the output).
+std::vector<Vec2> reference_nodes(const std::vector<std::string>& sets = {}) {
+  const SceneSpec scene = load_scene(kCook, sets);
+  return generate_body_mesh(scene.bodies.at(0).mesh).X;
+}
+
+Index nearest(const std::vector<Vec2>& X, const Vec2& at) {
+  Index best = 0;
+  for (Index i = 0; i < Index(X.size()); ++i)
+    if ((X[std::size_t(i)] - at).squaredNorm() < (X[std::size_t(best)] - at).squaredNorm()) best = i;
+  return best;
+}
+
+void expect_valid_frame(const VtuFrame& f, const std::vector<Vec2>& X, std::size_t n_cells) {
+  ASSERT_EQ(f.grid->GetNumberOfPoints(), vtkIdType(X.size()));
+  ASSERT_EQ(f.grid->GetNumberOfCells(), vtkIdType(n_cells));
+  vtkDataArray* u = f.point("displacement");
+  ASSERT_NE(u, nullptr);
+  EXPECT_EQ(u->GetNumberOfComponents(), 3);
+  ASSERT_EQ(u->GetNumberOfTuples(), vtkIdType(X.size()));
+  const std::pair<const char*, int> cell_arrays[] = {{"stress", 9}, {"pressure", 1}, {"J", 1}, {"von_mises", 1}};
+  for (const auto& [name, components] : cell_arrays) {
+    vtkDataArray* a = f.cell(name);
+    ASSERT_NE(a, nullptr) << name;
+    EXPECT_EQ(a->GetNumberOfComponents(), components) << name;
+    EXPECT_EQ(a->GetNumberOfTuples(), vtkIdType(n_cells)) << name;
+  }
+  // Points are the current configuration: x = X + u (plane: z = 0).
+  for (vtkIdType i = 0; i < f.grid->GetNumberOfPoints(); ++i) {
+    double x[3], d[3];
+    f.grid->GetPoint(i, x);
+    u->GetTuple(i, d);
+    const Vec2& Xi = X[std::size_t(i)];
+    EXPECT_NEAR(x[0], Xi.x() + d[0], 1e-12 * 60) << "point " << i;
+    EXPECT_NEAR(x[1], Xi.y() + d[1], 1e-12 * 60) << "point " << i;
+    EXPECT_EQ(x[2], 0.0);
+    EXPECT_EQ(d[2], 0.0);
+  }
+  // Cauchy stress (row-major 3x3): symmetric, plane strain (no out-of-plane shear), and the derived
+  // pressure and von Mises stress follow from it.
+  vtkDataArray *s = f.cell("stress"), *p = f.cell("pressure"), *vm = f.cell("von_mises"), *J = f.cell("J");
+  for (vtkIdType c = 0; c < f.grid->GetNumberOfCells(); ++c) {
+    double t[9];
+    s->GetTuple(c, t);
+    const double scale = 1.0 + std::abs(t[0]) + std::abs(t[4]) + std::abs(t[8]) + std::abs(t[1]);
+    EXPECT_NEAR(t[1], t[3], 1e-12 * scale);
+    EXPECT_EQ(t[2], 0.0);
+    EXPECT_EQ(t[5], 0.0);
+    EXPECT_EQ(t[6], 0.0);
+    EXPECT_EQ(t[7], 0.0);
+    const double pressure = -(t[0] + t[4] + t[8]) / 3.0;
+    EXPECT_NEAR(p->GetTuple1(c), pressure, 1e-12 * scale) << "cell " << c;
+    const double d0 = t[0] + pressure, d4 = t[4] + pressure, d8 = t[8] + pressure;
+    const double mises = std::sqrt(1.5 * (d0 * d0 + d4 * d4 + d8 * d8 + 2 * t[1] * t[1]));
+    EXPECT_NEAR(vm->GetTuple1(c), mises, 1e-12 * scale) << "cell " << c;
+    EXPECT_GT(J->GetTuple1(c), 0.0);
+    EXPECT_TRUE(std::isfinite(J->GetTuple1(c)));
+  }
+}
+
+void expect_no_temporary_files(const std::string& dir) {
+  for (const auto& f : files_under(dir)) EXPECT_EQ(f.find(".tmp"), std::string::npos) << "left behind: " << f;
+}
+
+TEST(OutputReadBack, CooksMembraneLinearFilesAreCompleteAndConsistent) {
+  TempDir out("output_cook");
+  const Command c = run_loom({"run", kCook, "--out", out.path(), "--quiet"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+
+  // 1. The directory holds exactly the documented files.
+  EXPECT_EQ(files_under(out.path()), (std::vector<std::string>{"cooks-membrane-linear.pvd", "cooks-membrane-linear_000000.vtu",
+                                                               "cooks-membrane-linear_000001.vtu", "probes.csv", "run.json",
+                                                               "timings.json"}));
+  expect_no_temporary_files(out.path());
+
+  // 2. probes.csv: header step,time,<probes in scene order>, then step 0 and one row per step.
+  const std::string csv = read_text(out.file("probes.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "step,time,uy_C,uy_M,reaction_y");
+  const ProbeTable probes = read_probes(out.file("probes.csv"));
+  ASSERT_EQ(probes.rows.size(), 2u);
+  EXPECT_EQ(probes.column("step"), (std::vector<double>{0, 1}));
+  EXPECT_EQ(probes.column("time"), (std::vector<double>{0, 1}));
+  EXPECT_EQ(probes.rows[0], (std::vector<double>{0, 0, 0, 0, 0}));
+  // Equilibrium: the clamp holds the total shear load 6.25 * 16 = 100 (sign: the force on the body).
+  EXPECT_NEAR(probes.column("reaction_y")[1], -100.0, 1e-6);
+
+  // 3. The .pvd lists the frames with their times; each file exists and reads back.
+  const auto entries = parse_pvd(read_text(out.file(kPvd)));
+  ASSERT_EQ(entries.size(), 2u);
+  const std::vector<Vec2> X = reference_nodes();
+  const Index corner = nearest(X, Vec2(48.0, 60.0));
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    SCOPED_TRACE(entries[k].file);
+    EXPECT_EQ(entries[k].time, probes.column("time")[k]);
+    ASSERT_TRUE(std::filesystem::exists(out.file(entries[k].file)));
+    const VtuFrame f = read_vtu(out.file(entries[k].file));
+    expect_valid_frame(f, X, 512);
+    // The point probe reads the same node and value as the frame of that step.
+    double d[3];
+    f.point("displacement")->GetTuple(corner, d);
+    EXPECT_LE(relative_gap(d[1], probes.column("uy_C")[k]), 1e-12) << d[1] << " vs " << probes.column("uy_C")[k];
+  }
+
+  // 4. run.json: the documented keys with their types and values.
+  const Json run = parse_json(read_text(out.file("run.json")));
+  for (const char* key : {"loom_version", "scene_file", "scene_name", "scene_hash", "method", "linear_solver", "failure"})
+    EXPECT_EQ(run.at(key).kind, Json::Kind::string) << key;
+  for (const char* key : {"threads", "dofs", "cells", "steps_requested", "steps_done", "last_converged_step",
+                          "last_converged_time", "newton_iterations", "cutbacks", "wall_seconds"})
+    EXPECT_EQ(run.at(key).kind, Json::Kind::number) << key;
+  EXPECT_EQ(run.at("converged").kind, Json::Kind::boolean);
+  EXPECT_TRUE(run.at("converged").boolean);
+  EXPECT_EQ(run.at("scene_file").string, kCook);
+  EXPECT_EQ(run.at("scene_name").string, "cooks-membrane-linear");
+  EXPECT_EQ(run.at("method").string, "fem");
+  EXPECT_FALSE(run.at("scene_hash").string.empty());
+  EXPECT_GE(run.at("threads").number, 1.0);
+  EXPECT_EQ(run.at("cells").number, 512.0);
+  EXPECT_EQ(run.at("dofs").number, 544.0);  // 289 nodes * 2 - 17 clamped nodes * 2
+  EXPECT_EQ(run.at("steps_requested").number, 1.0);
+  EXPECT_EQ(run.at("steps_done").number, 1.0);
+  EXPECT_EQ(run.at("last_converged_step").number, 1.0);
+  EXPECT_EQ(run.at("last_converged_time").number, 1.0);
+  EXPECT_GE(run.at("newton_iterations").number, 1.0);
+  EXPECT_EQ(run.at("cutbacks").number, 0.0);
+  EXPECT_GE(run.at("wall_seconds").number, 0.0);
+  EXPECT_EQ(run.at("failure").string, "");
+
+  // 5. timings.json: wall time and one entry per graph node (and its sub-timers).
+  const Json timings = parse_json(read_text(out.file("timings.json")));
+  const double wall = timings.at("wall").number;
+  EXPECT_GT(wall, 0.0);
+  EXPECT_NEAR(wall, run.at("wall_seconds").number, 1e-6 * wall);
+  const Json& timers = timings.at("timers");
+  ASSERT_EQ(timers.kind, Json::Kind::object);
+  for (const char* node : {"apply_boundary_conditions", "newton", "commit", "probes", "output"})
+    EXPECT_TRUE(timers.has(node)) << node;
+  for (const auto& [name, t] : timers.object) {
+    SCOPED_TRACE(name);
+    const double calls = t.at("calls").number, total = t.at("total").number, mean = t.at("mean").number;
+    EXPECT_GE(calls, 1.0);
+    EXPECT_EQ(calls, std::floor(calls));
+    EXPECT_GE(total, 0.0);
+    EXPECT_NEAR(mean * calls, total, 1e-6 * total + 1e-12);
+    EXPECT_LE(t.at("max").number, total * (1 + 1e-6) + 1e-12);
+    EXPECT_NEAR(t.at("share").number, total / wall, 1e-6);
+    EXPECT_LE(total, wall * (1 + 1e-6));
+  }
+}
+
+TEST(OutputReadBack, FramesFollowOutputEveryAndTheLastStepIsAlwaysWritten) {
+  TempDir out("output_every");
+  const std::vector<std::string> sets{"--set", "time.steps=5", "--set", "output.every=2", "--set",
+                                      "boundary[loaded].traction.y=6.25 * t / 5"};
+  std::vector<std::string> args{"run", kCook, "--out", out.path(), "--quiet"};
+  args.insert(args.end(), sets.begin(), sets.end());
+  const Command c = run_loom(args);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  expect_no_temporary_files(out.path());
+
+  const ProbeTable probes = read_probes(out.file("probes.csv"));
+  ASSERT_EQ(probes.rows.size(), 6u);
+  EXPECT_EQ(probes.column("step"), (std::vector<double>{0, 1, 2, 3, 4, 5}));
+  // Linear elasticity under a load ramp: the displacement grows in proportion.
+  const auto uy = probes.column("uy_C");
+  for (int k = 1; k <= 5; ++k) EXPECT_NEAR(uy[std::size_t(k)], uy[5] * k / 5.0, 1e-9 * std::abs(uy[5]));
+
+  const auto entries = parse_pvd(read_text(out.file(kPvd)));
+  ASSERT_EQ(entries.size(), 4u);
+  const double times[] = {0, 2, 4, 5};
+  const std::vector<Vec2> X = reference_nodes();
+  const Index corner = nearest(X, Vec2(48.0, 60.0));
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    EXPECT_EQ(entries[k].time, times[k]);
+    char name[64];
+    std::snprintf(name, sizeof name, "cooks-membrane-linear_%06d.vtu", int(times[k]));
+    EXPECT_EQ(entries[k].file, name);
+    const VtuFrame f = read_vtu(out.file(entries[k].file));
+    expect_valid_frame(f, X, 512);
+    EXPECT_LE(relative_gap(f.point("displacement")->GetComponent(corner, 1), uy[std::size_t(times[k])]), 1e-12);
+  }
+  EXPECT_EQ(files_under(out.path()).size(), 4u + 4u);  // frames + pvd, probes.csv, run.json, timings.json
+
+  // every = 0: no frames at all, the probes still every step.
+  TempDir none("output_every0");
+  ASSERT_EQ(run_loom({"run", kCook, "--out", none.path(), "--quiet", "--set", "output.every=0"}).exit_code, 0);
+  EXPECT_EQ(files_under(none.path()), (std::vector<std::string>{"probes.csv", "run.json", "timings.json"}));
+}
+
+}  // namespace
+}  // namespace loom::testing
