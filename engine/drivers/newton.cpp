@@ -1,5 +1,6 @@
 #include "engine/drivers/newton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -23,10 +24,11 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   double r = r0;
   auto converged = [&](double increment) {
     if (p.prescribed_pending()) return false;
-    return r <= s.residual_absolute || r <= s.residual_relative * r0 ||
+    const double reference = std::max(r0, p.force_scale());
+    return r <= s.residual_absolute || r <= s.residual_relative * reference ||
            increment <= s.increment_relative * p.step_change_norm();
   };
-  if (r <= s.residual_absolute && !p.prescribed_pending()) {
+  if ((r <= s.residual_absolute || r <= s.residual_relative * p.force_scale()) && !p.prescribed_pending()) {
     report.converged = true;
     return report;
   }

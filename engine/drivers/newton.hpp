@@ -1,7 +1,9 @@
 // Newton-Raphson on a nonlinear problem given by its operations (seed 000 §2: the residual (4) and its
-// linearisation (13)). Converged when the residual norm is below residual_absolute, or below
-// residual_relative times the first residual of the step, or when the increment stagnates at round-off
-// (|du| <= increment_relative |u - u_n|), and no prescribed dof still lags its target. An optional
+// linearisation (13)). Converged when no prescribed dof lags its target and either the residual norm is
+// below residual_absolute, or below residual_relative times the reference max(|r_0|, force scale) (r_0:
+// first residual of the step; force scale: the problem's measure of the forces in balance, so that a step
+// that starts in equilibrium at round-off does not chase round-off), or the increment stagnates at
+// round-off (|du| <= increment_relative |u - u_n|). An optional
 // backtracking line search halves the step while the residual does not decrease (Armijo, c = 1e-4) or
 // the iterate is inadmissible (an inverted cell). Failure is reported, never thrown: the caller cuts the
 // step back.
@@ -35,6 +37,8 @@ class NonlinearProblem {
   virtual double increment_norm() const = 0;   // |du| on the free dofs
   virtual double step_change_norm() const = 0;  // |u - u_n|
   virtual bool prescribed_pending() const = 0;  // some prescribed dof has not reached its target
+  // Norm of the forces in balance at the last assembly (external loads, reactions); 0 if unknown.
+  virtual double force_scale() const { return 0.0; }
 };
 
 struct NewtonReport {

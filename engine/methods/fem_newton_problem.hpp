@@ -40,6 +40,12 @@ class FemNewtonProblem final : public NonlinearProblem {
     for (Index i = 0; i < nodes_.size(); ++i) s += (nodes_.u[i] - nodes_.u_n[i]).squaredNorm();
     return std::sqrt(s);
   }
+  // |f_ext| and the reactions |r| on prescribed dofs: the forces the converged state balances.
+  double force_scale() const override {
+    double s = bc_.external.squaredNorm();
+    for (const auto& p : bc_.prescribed) s += system_.residual_full[p.dof] * system_.residual_full[p.dof];
+    return std::sqrt(s);
+  }
   bool prescribed_pending() const override {
     for (const auto& p : bc_.prescribed) {
       const double target = bc_.target[p.dof], u = nodes_.u[p.node][p.dof % bc_.per_node];
