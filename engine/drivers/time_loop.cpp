@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/core/errors.hpp"
+
 namespace loom {
 
 TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext& ctx, StepGraph& graph,
@@ -21,7 +23,16 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
       ctx.dt = last ? remaining : h;
       ctx.t = last ? t_end : t + h;
       ctx.step_end = last;
-      graph.run();
+      try {
+        graph.run();
+      } catch (const RunError& e) {
+        result.failed_step = step;
+        result.failed_dt = ctx.dt;
+        result.failure = e.what();
+        result.anomaly = true;
+        ctx.t = t;
+        return result;
+      }
       if (status.converged) {
         t = ctx.t;
         result.last_converged_time = t;

@@ -1,6 +1,7 @@
 // Time stepping with cut-backs: each scene step of size dt is solved by running the step graph; when
 // Newton fails the (sub)step is halved and retried, up to max_cutbacks halvings within one scene step.
 // Sub-steps complete the scene step at exactly t = step * dt (ctx.step_end marks the last one).
+// A RunError thrown by a system (an anomaly, not a Newton failure) ends the loop with the partial result.
 #pragma once
 
 #include <functional>
@@ -19,6 +20,7 @@ struct TimeLoopResult {
   int failed_step = 0;
   double failed_dt = 0.0;
   int cutbacks = 0;                  // over the whole run
+  bool anomaly = false;              // a system threw (RunError): no cut-back is tried
   std::string failure;
 };
 

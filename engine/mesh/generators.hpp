@@ -27,8 +27,9 @@ MeshData generate_rectangle(const RectangleSpec& spec);
 // nx by ny structured grid (nx along the clamped-to-loaded direction).
 MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern);
 
-// Moves interior nodes by a random vector of length up to `fraction` of the local edge length
-// (deterministic for a given seed); boundary nodes stay, so the outline is unchanged.
+// Moves interior nodes by a random vector of length up to `fraction` of the node's smallest altitude in
+// its triangles (deterministic for a given seed); boundary nodes stay, so the outline is unchanged.
+// No triangle inverts for fraction < 0.264.
 void distort_interior_nodes(MeshData& mesh, double fraction, std::uint64_t seed);
 
 void scale_mesh(MeshData& mesh, double factor);

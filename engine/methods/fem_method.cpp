@@ -140,7 +140,7 @@ void FemRun::output_node() {
 }
 
 void FemRun::describe(std::ostream& os) const {
-  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method fem, " << scene_.bodies.size() << " bodies\n";
+  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method fem, " << scene_.bodies.size() << (scene_.bodies.size() == 1 ? " body\n" : " bodies\n");
   os << "stores:\n";
   {
     StoreReport r(os, "nodes", nodes_.size());
@@ -167,22 +167,23 @@ void FemRun::describe(std::ostream& os) const {
   graph_->print(os);
 }
 
-RunSummary FemRun::run() {
-  const auto start = std::chrono::steady_clock::now();
-  RunSummary summary;
-  summary.steps_requested = scene_.time.steps;
-  summary.dofs = system_.dofs.n_free;
-  for (const auto& c : cells_) summary.cells += c.size();
-
-  if (options_.write_files) {
-    make_directories(options_.output_directory);
-    pvd_ = PvdWriter(options_.output_directory, file_stem(scene_.scene.name));
-    std::vector<std::string> names;
-    for (const auto& p : scene_.probes) names.push_back(p.name);
-    probe_writer_.open(options_.output_directory + "/probes.csv", names);
+void FemRun::open_output() {
+  const std::string& dir = options_.output_directory;
+  make_directories(dir);
+  // Frames of an earlier run of this scene would otherwise sit beside the new ones.
+  const std::string stem = file_stem(scene_.scene.name);
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(stem + "_", 0) == 0 && entry.path().extension() == ".vtu") std::filesystem::remove(entry.path());
   }
+  pvd_ = PvdWriter(dir, stem);
+  std::vector<std::string> names;
+  for (const auto& p : scene_.probes) names.push_back(p.name);
+  probe_writer_.open(dir + "/probes.csv", names);
+}
 
-  // Initial state (step 0): loads at t = 0, one assembly for the reactions, probes and the first frame.
+void FemRun::write_initial_state() {
+  // Step 0: loads at t = 0, one assembly for the reactions, probes and the first frame.
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
   apply_boundary_conditions(ctx_, nodes_, cells_, materials_, bc_);
   assemble_system(ctx_, AssemblyMode::residual, materials_, nodes_, cells_, bc_, quad_, system_);
@@ -190,6 +191,15 @@ RunSummary FemRun::run() {
   status_.converged = true;
   probes_node();
   if (options_.write_files && scene_.output.every > 0) output_node();
+}
+
+RunSummary FemRun::run() {
+  const auto start = std::chrono::steady_clock::now();
+  RunSummary summary;
+  summary.steps_requested = scene_.time.steps;
+  summary.dofs = system_.dofs.n_free;
+  for (const auto& c : cells_) summary.cells += c.size();
+  if (options_.write_files) open_output();
 
   Progress progress(scene_.time.steps, options_.progress);
   TimeLoopCallbacks callbacks;
@@ -201,29 +211,33 @@ RunSummary FemRun::run() {
     }
   };
   TimeLoopResult result;
-  bool anomaly = false;  // a system threw (no cut-back is tried), as opposed to Newton giving up
-  try {
-    result = run_time_loop(scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, ctx_, *graph_, status_, callbacks);
-  } catch (const RunError& e) {
-    // An anomaly in a system (not a Newton failure): the run stops, the output so far stays valid.
-    anomaly = true;
+  auto stop = [&](const RunError& e) {  // an anomaly outside the time loop (step 0, frame writing)
     result.completed = false;
+    result.anomaly = true;
     result.failed_step = ctx_.step;
     result.failed_dt = ctx_.dt;
     result.failure = e.what();
-    result.last_converged_step = std::max(0, ctx_.step - 1);
-    result.last_converged_time = double(result.last_converged_step) * scene_.time.dt;
+  };
+  try {
+    write_initial_state();
+    result = run_time_loop(scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, ctx_, *graph_, status_, callbacks);
+    progress.finish();
+    if (!result.completed && options_.write_files && scene_.output.every > 0 && result.last_converged_time != last_frame_time_) {
+      // Keep the last converged state for inspection (commit left it in u_n and F_n); it may lie inside
+      // the failed step after converged sub-steps, so it takes that step's number.
+      ctx_.step = result.failed_step;
+      ctx_.t = result.last_converged_time;
+      output_node();
+    }
+  } catch (const RunError& e) {
+    stop(e);
+  }
+  try {
+    writer_.wait();
+  } catch (const RunError& e) {
+    if (result.completed) stop(e);
   }
   progress.finish();
-
-  if (!result.completed && options_.write_files && scene_.output.every > 0 && result.last_converged_time != last_frame_time_) {
-    // Keep the last converged state for inspection (commit left it in u_n and F_n); it may lie inside
-    // the failed step after converged sub-steps, so it takes that step's number.
-    ctx_.step = result.failed_step;
-    ctx_.t = result.last_converged_time;
-    output_node();
-  }
-  writer_.wait();
 
   summary.converged = result.completed;
   summary.steps_done = result.last_converged_step;
@@ -234,7 +248,7 @@ RunSummary FemRun::run() {
   summary.linear_solver = solver_.backend();
   if (!result.completed) {
     std::ostringstream os;
-    if (anomaly)
+    if (result.anomaly)
       os << "step " << result.failed_step << " stopped: " << result.failure;
     else
       os << "step " << result.failed_step << " did not converge after " << scene_.solver.max_cutbacks << " cut-backs (last dt "

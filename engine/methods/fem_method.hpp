@@ -47,6 +47,8 @@ class FemRun final : public MethodRun {
 
  private:
   void build_graph();
+  void open_output();
+  void write_initial_state();
   void newton_node();
   void probes_node();
   void output_node();

@@ -62,6 +62,13 @@ std::string names_of(const std::vector<Spec>& items) {
   return s.empty() ? "(none)" : s;
 }
 
+// Names are keys of cross-references and columns of probes.csv: they must be non-empty.
+std::string read_name(const TableReader& t) {
+  std::string name = t.string("name");
+  if (t.has("name") && name.empty()) t.error("name", "must not be empty");
+  return name;
+}
+
 class Loader {
  public:
   Loader(const toml::table& root, const std::string& file, Diagnostics& diag)
@@ -119,7 +126,7 @@ class Loader {
 
   void read_material(SceneSpec& s, const TableReader& t) {
     MaterialSpec m;
-    m.name = t.string("name");
+    m.name = read_name(t);
     m.where = t.where();
     if (find_by_name(s.materials, m.name) != kNoIndex) t.error("name", "a material named \"" + m.name + "\" already exists");
     m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic}});
@@ -149,7 +156,7 @@ class Loader {
 
   void read_body(SceneSpec& s, const TableReader& t) {
     BodySpec b;
-    b.name = t.string("name");
+    b.name = read_name(t);
     b.where = t.where();
     if (find_by_name(s.bodies, b.name) != kNoIndex) t.error("name", "a body named \"" + b.name + "\" already exists");
     const std::string mat = t.string("material");
@@ -184,7 +191,7 @@ class Loader {
 
   void read_boundary(SceneSpec& s, const TableReader& t) {
     BoundarySpec b;
-    b.name = t.string("name");
+    b.name = read_name(t);
     if (find_by_name(s.boundaries, b.name) != kNoIndex) t.error("name", "a boundary named \"" + b.name + "\" already exists");
     if (t.has("body")) {
       const std::string body = t.string("body");
@@ -210,7 +217,7 @@ class Loader {
 
   void read_probe(SceneSpec& s, const TableReader& t) {
     ProbeSpec p;
-    p.name = t.string("name");
+    p.name = read_name(t);
     p.where = t.where();
     if (find_by_name(s.probes, p.name) != kNoIndex || p.name == "step" || p.name == "time")
       t.error("name", "the probe name \"" + p.name + "\" is already a column of probes.csv");

@@ -69,7 +69,7 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].mesh.pattern", K::choice, "Triangulation of the grid: right, alternating, or shifted (seed 000 Fig 7b).")
                   .one_of({"right", "alternating", "shifted"}).by_default("right"));
   s.push_back(key("body[].mesh.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
-  s.push_back(key("body[].mesh.distortion", K::real, "Random move of interior nodes, as a fraction of the shortest adjacent edge.").by_default("0.0").at_least(0).at_most(0.45));
+  s.push_back(key("body[].mesh.distortion", K::real, "Random move of interior nodes, as a fraction of the node's smallest altitude (no cell can invert up to 0.25).").by_default("0.0").at_least(0).at_most(0.25));
   s.push_back(key("body[].mesh.seed", K::integer, "Seed of the distortion.").by_default("1").at_least(0));
   s.push_back(key("body[].body_force", K::table, "Body force per unit mass on this body (added to the global [body_force])."));
   s.push_back(key("body[].body_force.x", K::expression, "x component." + expr).by_default("0"));

@@ -180,8 +180,7 @@ TEST(FailedRun, ExpressionThatIsNotFiniteStopsTheRunNamingTheKey) {
 }
 
 TEST(FailedRun, ExpressionThatIsNotFiniteAtTheStartNamesTheKey) {
-  // -0.005 / t is -inf at t = 0: the initial state cannot be set up. (run.json is not written in this
-  // case: the failure escapes FemRun::run before the time loop.)
+  // -0.005 / t is -inf at t = 0: the initial state cannot be set up; run.json still records the failure.
   TempDir dir("failed_start");
   std::string text = kCrushed;
   const std::string from = "\"t < 2.5 ? -0.005 * t : -0.95\"", to = "\"-0.005 / t\"";
@@ -193,6 +192,10 @@ TEST(FailedRun, ExpressionThatIsNotFiniteAtTheStartNamesTheKey) {
   EXPECT_FALSE(looks_like_crash(c.err)) << c.err;
   EXPECT_NE(c.err.find("boundary[1].displacement.y: expression \"-0.005 / t\" is not finite at t = 0"), std::string::npos) << c.err;
   EXPECT_NE(c.err.find(scene + ":"), std::string::npos) << c.err;
+  const Json run = parse_json(read_text(dir.file("out") + "/run.json"));
+  EXPECT_FALSE(run.at("converged").boolean);
+  EXPECT_EQ(run.at("last_converged_step").number, 0.0);
+  EXPECT_EQ(run.at("steps_done").number, 0.0);
 }
 
 }  // namespace

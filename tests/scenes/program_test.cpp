@@ -132,6 +132,7 @@ TEST(Program, OutReplacesTheOutputDirectoryOfTheScene) {
   ASSERT_EQ(run_loom({"run", kCook, "--quiet", "--out", from_cli, "--set", "time.steps=2"}).exit_code, 0);
   EXPECT_EQ(read_probes(from_cli + "/probes.csv").rows.size(), 3u);
   EXPECT_EQ(parse_pvd(read_text(from_cli + "/cooks-membrane-linear.pvd")).size(), 3u);
+  EXPECT_FALSE(std::filesystem::exists(from_cli + "/cooks-membrane-linear_000003.vtu"));  // stale frame removed
   EXPECT_EQ(parse_json(read_text(from_cli + "/run.json")).at("steps_done").number, 2.0);
 }
 

@@ -35,7 +35,7 @@ std::string scene_text(const std::string& mass) {
          "[solver]\nresidual_relative = 1e-12\n"
          "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 100.0\nnu = 0.3\ndensity = 2.0\n"
          "[[body]]\nname = \"block\"\nmaterial = \"m\"\n"
-         "mesh = { generator = \"rectangle\", origin = [1.0, 2.0], size = [1.0, 0.5], divisions = [6, 3], pattern = \"alternating\", distortion = 0.3 }\n"
+         "mesh = { generator = \"rectangle\", origin = [1.0, 2.0], size = [1.0, 0.5], divisions = [6, 3], pattern = \"alternating\", distortion = 0.25 }\n"
          "[body_force]\nx = 3.0\ny = -9.81\n"
          "[[probe]]\nname = \"ux\"\nkind = \"point\"\nat = [1.0, 2.0]\ncomponent = \"x\"\n"
          "[[probe]]\nname = \"uy\"\nkind = \"point\"\nat = [2.0, 2.5]\ncomponent = \"y\"\n"

@@ -46,7 +46,7 @@ std::string scene_text(const PatchCase& c) {
   s += "[[material]]\nname = \"m\"\nmodel = \"" + c.model + "\"\nE = 10.0\nnu = 0.3\n";
   s += "[[body]]\nname = \"patch\"\nmaterial = \"m\"\n";
   s += "mesh = { generator = \"rectangle\", origin = [0.5, -0.25], size = [2.0, 1.0], divisions = [6, 4], pattern = \"" +
-       c.pattern + "\", distortion = 0.4, seed = 11 }\n";
+       c.pattern + "\", distortion = 0.25, seed = 11 }\n";
   s += "[[boundary]]\nname = \"left\"\n" + box(kX0, kY0, kX0, y1) + disp;
   s += "[[boundary]]\nname = \"right\"\n" + box(x1, kY0, x1, y1) + disp;
   s += "[[boundary]]\nname = \"bottom\"\n" + box(kX0, kY0, x1, kY0) + disp;
