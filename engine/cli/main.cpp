@@ -22,7 +22,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  loom run SCENE [--out DIR] [--threads N] [--set key.path=value]... [--quiet]\n"
+    "  loom run SCENE [--out DIR] [--threads N] [--set key.path=value]... [--quiet] [--verbose]\n"
     "  loom check SCENE [--set key.path=value]...   validate the scene and build its mesh, do not run\n"
     "  loom info SCENE [--set key.path=value]...    print the step graph and the store sizes\n"
     "  loom schema [--markdown]                      print every scene key with type, default and meaning\n"
@@ -34,7 +34,7 @@ struct Args {
   std::string command, scene, out;
   std::vector<std::string> sets;
   int threads = 0;
-  bool quiet = false, markdown = false;
+  bool quiet = false, markdown = false, verbose = false;
 };
 
 Args parse(int argc, char** argv) {
@@ -61,6 +61,7 @@ Args parse(int argc, char** argv) {
         throw loom::InputError("--threads needs a positive integer, got '" + n + "'");
       }
     } else if (s == "--quiet") a.quiet = true;
+    else if (s == "--verbose") a.verbose = true;
     else if (s == "--markdown") a.markdown = true;
     else if (!s.empty() && s[0] == '-') throw loom::InputError("unknown option " + s + "\n" + kUsage);
     else if (a.scene.empty()) a.scene = s;
@@ -80,6 +81,7 @@ int run(const Args& a) {
   options.threads = threads;
   options.progress = !a.quiet;
   options.log = &std::cerr;
+  options.verbose = a.verbose;
   auto method = loom::make_method_run(scene, options);
   loom::RunSummary summary = method->run();
   summary.threads = threads;

@@ -21,6 +21,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   const double r0 = p.residual_norm();
   if (!std::isfinite(r0)) return fail("the initial residual is not finite");
   report.residuals.push_back(r0);
+  if (s.log) *s.log << "  newton 0: |r_0| = " << r0 << ", force scale " << p.force_scale() << "\n";
   double r = r0;
   // Converged at residual norm `res` after an increment of norm `increment`.
   auto converged_at = [&](double res, double increment) {
@@ -68,6 +69,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     if (!std::isfinite(r_new)) return fail("the residual is not finite");
     r = r_new;
     report.residuals.push_back(r);
+    if (s.log) *s.log << "  newton " << it << ": |r| = " << r << " (|r|/|r_0| = " << r / std::max(r0, 1e-300) << "), step " << step << "\n";
     if (converged_at(r, step * p.increment_norm())) {
       report.converged = true;
       return report;

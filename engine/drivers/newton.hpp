@@ -9,6 +9,7 @@
 // step back.
 #pragma once
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct NewtonSettings {
   double residual_absolute = 1e-10;
   double increment_relative = 1e-12;
   bool line_search = false;
+  std::ostream* log = nullptr;  // one line per iteration (residual, step length) when set
 };
 
 class NonlinearProblem {

@@ -42,12 +42,14 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     lo[b] = lo[b].cwiseMin(nodes.X[i]), hi[b] = hi[b].cwiseMax(nodes.X[i]);
   }
 
-  // Boundary edges of every body (cells of all blocks; bodies do not share nodes).
-  std::vector<Index> corners;
+  // Boundary edges of every block (bodies do not share nodes), with the mid-node of quadratic cells.
+  struct Edge {
+    Index a, b, mid;
+  };
+  std::vector<Edge> edges;
   for (const Cells& cb : cells)
-    for (Index c = 0; c < cb.size(); ++c)
-      for (int a = 0; a < 3; ++a) corners.push_back(cb.node(c, a));
-  const auto edges = boundary_edges(corners, 3);
+    for (const auto& e : boundary_edges(cb.nodes.values(), cb.stride))
+      edges.push_back({e.a, e.b, cb.stride == 6 ? cb.node(e.cell, 3 + e.side) : kNoIndex});
 
   std::map<Index, std::size_t> prescribed_at;  // dof -> entry of bc.prescribed
   std::vector<Index> prescriber;               // boundary that created each entry
@@ -102,7 +104,7 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
       if (spec.traction.y) expr[1] = add_expression(bc, *spec.traction.y);
       std::size_t n_edges = 0;
       for (const auto& e : edges)
-        if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, expr}), ++n_edges;
+        if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, e.mid, expr}), ++n_edges;
       LOOM_CHECK(n_edges > 0, InputError,
                  spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary edges with both "
                                    << "end nodes in the region, and this region holds none");
@@ -126,8 +128,15 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
   return bc;
 }
 
-std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, Index n_nodes, int dofs_per_node) {
+std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node) {
   std::vector<DofKind> kinds(std::size_t(n_nodes) * std::size_t(dofs_per_node), DofKind::free);
+  if (dofs_per_node == 3) {
+    // The dilatation is an unknown only at nodes of mixed u-phi cells.
+    for (Index i = 0; i < n_nodes; ++i) kinds[std::size_t(3 * i + 2)] = DofKind::absent;
+    for (const Cells& cb : cells)
+      if (has_dilatation(cb.formulation))
+        for (Index k = 0; k < cb.nodes.size(); ++k) kinds[std::size_t(3 * cb.nodes[k] + 2)] = DofKind::free;
+  }
   for (const auto& p : bc.prescribed) kinds[std::size_t(p.dof)] = DofKind::prescribed;
   return kinds;
 }

@@ -19,7 +19,8 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
                                                 int dofs_per_node);
 
-// Dof kinds of the run: prescribed where a boundary prescribes a displacement component.
-std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, Index n_nodes, int dofs_per_node);
+// Dof kinds of the run: prescribed where a boundary prescribes a displacement component; with three
+// dofs per node the third (phi) is free at nodes of mixed u-phi cells and absent elsewhere.
+std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node);
 
 }  // namespace loom

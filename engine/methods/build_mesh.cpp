@@ -2,6 +2,7 @@
 
 #include "engine/mesh/colouring.hpp"
 #include "engine/mesh/generators.hpp"
+#include "engine/mesh/mid_nodes.hpp"
 
 namespace loom {
 
@@ -29,7 +30,10 @@ std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vect
   cells.clear();
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& body = scene.bodies[b];
-    const MeshData mesh = generate_body_mesh(body.mesh);
+    MeshData mesh = generate_body_mesh(body.mesh);
+    const CellType type = cell_type_of(body.element);
+    const std::vector<Index> connectivity = type == CellType::tri6 ? add_mid_nodes(mesh.X, mesh.triangles) : mesh.triangles;
+    const int stride = nodes_per_cell(type);
     const Index offset = Index(X.size());
     X.insert(X.end(), mesh.X.begin(), mesh.X.end());
     node_body.insert(node_body.end(), mesh.X.size(), Index(b));
@@ -37,11 +41,11 @@ std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vect
     for (auto& c : cells)
       if (c.formulation == body.element) block = &c;
     if (!block) {
-      cells.emplace_back(CellType::tri3, body.element);
+      cells.emplace_back(type, body.element);
       block = &cells.back();
     }
-    for (Index t = 0; t < mesh.n_triangles(); ++t) {
-      for (int a = 0; a < 3; ++a) block->nodes.values().push_back(offset + mesh.triangles[std::size_t(3 * t + a)]);
+    for (std::size_t t = 0; t < connectivity.size() / std::size_t(stride); ++t) {
+      for (int a = 0; a < stride; ++a) block->nodes.values().push_back(offset + connectivity[t * std::size_t(stride) + std::size_t(a)]);
       block->body.values().push_back(Index(b));
     }
   }

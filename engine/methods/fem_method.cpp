@@ -12,15 +12,11 @@
 #include "engine/io/files.hpp"
 #include "engine/io/progress.hpp"
 #include "engine/io/vtk_writer.hpp"
-#include "engine/methods/build_boundary_conditions.hpp"
-#include "engine/methods/build_mesh.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/store/store_report.hpp"
-#include "systems/assemble/compute_geometry.hpp"
 #include "systems/loads/apply_boundary_conditions.hpp"
 #include "systems/output/snapshot_frame.hpp"
 #include "systems/update/commit_step.hpp"
-#include "systems/update/lumped_mass.hpp"
 
 namespace loom {
 namespace {
@@ -34,39 +30,11 @@ std::string file_stem(const std::string& name) {
 
 }  // namespace
 
+
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
-    : scene_(scene), options_(options), solver_(scene.solver.linear) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
-  // 1. Columns: dynamic integrators need velocities and accelerations, lumped mass its column.
-  const bool dynamic = scene_.time.integrator == Integrator::euler_backward;
-  for (auto* c : {&nodes_.v, &nodes_.v_n, &nodes_.a, &nodes_.a_n}) c->use(dynamic);
-  nodes_.lumped_mass.use(dynamic && scene_.time.mass == MassKind::lumped);
-
-  // 2. Mesh, quadrature points and the reference geometry.
-  node_body_ = build_mesh(scene_, nodes_, cells_);
-  materials_ = body_materials(scene_);
-  allocate_quad_points(cells_, quad_);
-  if (compute_geometry(nodes_, cells_, quad_) != 0) {
-    // compute_geometry does not say which body: with one body, point at its mesh.
-    std::ostringstream where;
-    if (scene_.bodies.size() == 1) where << scene_.bodies[0].mesh.where << ": error: body[0].mesh";
-    else where << scene_.file << ": error: body mesh";
-    throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (distortion, size or scale too extreme?)");
-  }
-  if (nodes_.lumped_mass.used()) compute_lumped_mass(cells_, quad_, materials_, nodes_);
-
-  // 3. Boundary conditions, dof numbering, sparsity and scatter.
-  const int per_node = 2;
-  bc_ = build_boundary_conditions(scene_, nodes_, cells_, node_body_, per_node);
-  system_.dofs.build(per_node, dof_kinds(bc_, nodes_.size(), per_node));
-  std::vector<const Cells*> blocks;
-  for (const auto& c : cells_) blocks.push_back(&c);
-  build_pattern(blocks, system_.dofs, system_.pattern);
-  system_.scatter.resize(cells_.size());
-  for (std::size_t b = 0; b < cells_.size(); ++b) build_scatter(cells_[b], system_.dofs, system_.pattern, system_.scatter[b]);
-  system_.resize_vectors();
-  probe_plan_ = plan_probes(scene_, nodes_, node_body_);
-
+  probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   build_graph();
 }
 
@@ -75,38 +43,37 @@ FemRun::~FemRun() = default;
 void FemRun::build_graph() {
   graph_ = std::make_unique<StepGraph>("fem", ctx_, timers_);
   StepGraph& g = *graph_;
-  g.name_store(&nodes_, "nodes");
-  g.name_store(&cells_, "cells");
-  g.name_store(&quad_, "quad_points");
-  g.name_store(&materials_, "materials");
-  g.name_store(&bc_, "boundary_conditions");
-  g.name_store(&system_, "linear_system");
+  g.name_store(&m_.nodes, "nodes");
+  g.name_store(&m_.cells, "cells");
+  g.name_store(&m_.quad, "quad_points");
+  g.name_store(&m_.materials, "materials");
+  g.name_store(&m_.bc, "boundary_conditions");
+  g.name_store(&m_.system, "linear_system");
   g.name_store(&status_, "step_status");
   g.name_store(&probe_writer_, "probes.csv");
   g.name_store(&writer_, "vtk_writer");
 
-  g.add_system("apply_boundary_conditions", &apply_boundary_conditions, nodes_, cells_, materials_, bc_);
-  g.add_node("newton", {{&bc_, &cells_, &materials_}, {&nodes_, &quad_, &system_, &status_}}, [this] { newton_node(); },
+  g.add_system("apply_boundary_conditions", &apply_boundary_conditions, m_.nodes, m_.cells, m_.materials, m_.bc);
+  g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
-  const auto commit = g.add_system("commit", &commit_step, cells_, nodes_, quad_);
+  const auto commit = g.add_system("commit", &commit_step, m_.cells, m_.nodes, m_.quad);
   g.run_if(commit, &status_, [this] { return status_.converged; });
-  const auto probes = g.add_node("probes", {{&nodes_, &system_, &bc_}, {&probe_writer_}}, [this] { probes_node(); });
+  const auto probes = g.add_node("probes", {{&m_.nodes, &m_.cells, &m_.quad, &m_.materials, &m_.system, &m_.bc}, {&probe_writer_}}, [this] { probes_node(); });
   g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
-  const auto output = g.add_node("output", {{&nodes_, &cells_, &quad_, &materials_}, {&writer_}}, [this] { output_node(); },
+  const auto output = g.add_node("output", {{&m_.nodes, &m_.cells, &m_.quad, &m_.materials}, {&writer_}}, [this] { output_node(); },
                                  "snapshot here; the VTK file is written while the next step runs");
   g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
   g.build();
 }
 
 void FemRun::newton_node() {
-  reset_iterate(nodes_);
-  NewtonSettings settings;
-  settings.max_iterations = scene_.solver.max_iterations;
-  settings.residual_relative = scene_.solver.residual_relative;
-  settings.residual_absolute = scene_.solver.residual_absolute;
-  settings.increment_relative = scene_.solver.increment_relative;
-  settings.line_search = scene_.solver.line_search;
-  FemNewtonProblem problem(ctx_, materials_, cells_, bc_, nodes_, quad_, system_, solver_, timers_);
+  reset_iterate(m_.nodes);
+  FemNewtonProblem problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_);
+  NewtonSettings settings = newton_settings_of(scene_.solver);
+  if (options_.verbose && options_.log) {
+    *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
+    settings.log = options_.log;
+  }
   const NewtonReport report = solve_newton(problem, settings, timers_);
   status_.converged = report.converged;
   status_.iterations = report.iterations;
@@ -116,7 +83,7 @@ void FemRun::newton_node() {
 }
 
 void FemRun::probes_node() {
-  evaluate_probes(ctx_, probe_plan_, nodes_, system_, bc_, status_.step_iterations, probe_values_);
+  evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 
@@ -128,7 +95,7 @@ bool FemRun::frame_due() const {
 void FemRun::output_node() {
   last_frame_time_ = ctx_.t;
   auto frame = std::make_shared<Frame>();
-  snapshot_frame(ctx_, materials_, nodes_, cells_, quad_, *frame);
+  snapshot_frame(ctx_, m_.materials, m_.nodes, m_.cells, m_.quad, *frame);
   std::ostringstream name;
   name << file_stem(scene_.scene.name) << "_" << std::setw(6) << std::setfill('0') << frame->step << ".vtu";
   const std::string dir = options_.output_directory, file = name.str();
@@ -143,27 +110,29 @@ void FemRun::describe(std::ostream& os) const {
   os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method fem, " << scene_.bodies.size() << (scene_.bodies.size() == 1 ? " body\n" : " bodies\n");
   os << "stores:\n";
   {
-    StoreReport r(os, "nodes", nodes_.size());
-    nodes_.for_each_column(r);
+    StoreReport r(os, "nodes", m_.nodes.size());
+    m_.nodes.for_each_column(r);
   }
   {
-    StoreReport r(os, "points", points_.size());
-    points_.for_each_column(r);
+    StoreReport r(os, "points", m_.points.size());
+    m_.points.for_each_column(r);
   }
-  for (std::size_t b = 0; b < cells_.size(); ++b) {
+  for (std::size_t b = 0; b < m_.cells.size(); ++b) {
     {
-      StoreReport r(os, std::string("cells[") + formulation_name(cells_[b].formulation) + ", " + cell_type_name(cells_[b].type) + "]",
-                    cells_[b].size());
-      cells_[b].for_each_column(r);
+      StoreReport r(os, std::string("cells[") + formulation_name(m_.cells[b].formulation) + ", " + cell_type_name(m_.cells[b].type) + "]",
+                    m_.cells[b].size());
+      m_.cells[b].for_each_column(r);
     }
-    os << "    colours: " << cells_[b].n_colours() << "\n";
-    StoreReport r(os, std::string("quad_points[") + formulation_name(cells_[b].formulation) + "]", quad_[b].size());
-    quad_[b].for_each_column(r);
+    os << "    colours: " << m_.cells[b].n_colours() << "\n";
+    StoreReport r(os, std::string("quad_points[") + formulation_name(m_.cells[b].formulation) + "]", m_.quad[b].size());
+    m_.quad[b].for_each_column(r);
   }
-  os << "  linear_system: " << system_.dofs.n_dofs() << " dofs, " << system_.dofs.n_free << " free, "
-     << system_.pattern.matrix.nonZeros() << " non-zeros; solver " << (scene_.solver.linear == LinearSolverKind::umfpack ? "umfpack" : scene_.solver.linear == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)") << "\n";
-  os << "  boundary_conditions: " << bc_.prescribed.size() << " prescribed dofs, " << bc_.traction_edges.size()
-     << " traction edges, loads " << (bc_.has_loads ? (bc_.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
+  os << "  linear_system: " << m_.system.dofs.n_dofs() << " dofs, " << m_.system.dofs.n_free << " free, "
+     << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
+     << (m_.linear_solver == LinearSolverKind::umfpack ? "umfpack" : m_.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)")
+     << "\n";
+  os << "  boundary_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, " << m_.bc.traction_edges.size()
+     << " traction edges, loads " << (m_.bc.has_loads ? (m_.bc.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
   graph_->print(os);
 }
 
@@ -185,8 +154,8 @@ void FemRun::open_output() {
 void FemRun::write_initial_state() {
   // Step 0: loads at t = 0, one assembly for the reactions, probes and the first frame.
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
-  apply_boundary_conditions(ctx_, nodes_, cells_, materials_, bc_);
-  assemble_system(ctx_, AssemblyMode::residual, materials_, nodes_, cells_, bc_, quad_, system_);
+  apply_boundary_conditions(ctx_, m_.nodes, m_.cells, m_.materials, m_.bc);
+  assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system);
   status_ = StepStatus{};
   status_.converged = true;
   probes_node();
@@ -197,8 +166,8 @@ RunSummary FemRun::run() {
   const auto start = std::chrono::steady_clock::now();
   RunSummary summary;
   summary.steps_requested = scene_.time.steps;
-  summary.dofs = system_.dofs.n_free;
-  for (const auto& c : cells_) summary.cells += c.size();
+  summary.dofs = m_.system.dofs.n_free;
+  for (const auto& c : m_.cells) summary.cells += c.size();
   if (options_.write_files) open_output();
 
   Progress progress(scene_.time.steps, options_.progress);

@@ -15,6 +15,7 @@
 #include "engine/io/pvd_writer.hpp"
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/linalg/linear_system.hpp"
+#include "engine/methods/fem_model.hpp"
 #include "engine/methods/method.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
@@ -36,11 +37,12 @@ class FemRun final : public MethodRun {
   RunSummary run() override;
 
   // Read access for tests and tools.
-  const Nodes<2>& nodes() const { return nodes_; }
-  const std::vector<Cells>& cells() const { return cells_; }
-  const std::vector<QuadPoints<2>>& quad_points() const { return quad_; }
-  const LinearSystem& system() const { return system_; }
-  const BoundaryConditions<2>& boundary_conditions() const { return bc_; }
+  const FemModel& model() const { return m_; }
+  const Nodes<2>& nodes() const { return m_.nodes; }
+  const std::vector<Cells>& cells() const { return m_.cells; }
+  const std::vector<QuadPoints<2>>& quad_points() const { return m_.quad; }
+  const LinearSystem& system() const { return m_.system; }
+  const BoundaryConditions<2>& boundary_conditions() const { return m_.bc; }
   const std::vector<double>& probe_values() const { return probe_values_; }
   const StepGraph& graph() const { return *graph_; }
   const Timers& timers() const override { return timers_; }
@@ -54,21 +56,12 @@ class FemRun final : public MethodRun {
   void output_node();
   bool frame_due() const;
 
-  SceneSpec scene_;
+  FemModel m_;  // the stores
+  const SceneSpec& scene_;
   RunOptions options_;
   StepContext ctx_;
   Timers timers_;
   StepStatus status_;
-
-  // Stores
-  Nodes<2> nodes_;
-  Points<2> points_;  // not used by fem: no column is allocated
-  std::vector<Cells> cells_;
-  std::vector<QuadPoints<2>> quad_;
-  std::vector<BodyMaterial> materials_;
-  BoundaryConditions<2> bc_;
-  LinearSystem system_;
-  std::vector<Index> node_body_;
 
   // Per-run workspace
   LinearSolve solver_;

@@ -19,6 +19,16 @@
 
 namespace loom {
 
+inline NewtonSettings newton_settings_of(const SolverSpec& solver) {
+  NewtonSettings s;
+  s.max_iterations = solver.max_iterations;
+  s.residual_relative = solver.residual_relative;
+  s.residual_absolute = solver.residual_absolute;
+  s.increment_relative = solver.increment_relative;
+  s.line_search = solver.line_search;
+  return s;
+}
+
 class FemNewtonProblem final : public NonlinearProblem {
  public:
   FemNewtonProblem(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const std::vector<Cells>& cells,

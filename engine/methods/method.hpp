@@ -18,6 +18,7 @@ struct RunOptions {
   int threads = 0;               // oneTBB concurrency in effect (reported)
   bool write_files = true;       // false for `loom info` / `loom check`
   bool progress = true;
+  bool verbose = false;          // Newton residuals of every iteration to `log`
   std::ostream* log = nullptr;   // run messages (cut-backs, failure); nullptr: silent
 };
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/types.hpp"
 
 namespace loom {
 
@@ -59,6 +60,25 @@ std::string Expression::compile_error(const std::string& text) {
     return colon == std::string::npos ? msg : msg.substr(colon + 3);
   }
   return {};
+}
+
+double evaluate_formula(const std::string& text, const std::vector<std::pair<std::string, double>>& constants,
+                        std::string* error) {
+  try {
+    mu::Parser parser;
+    for (const auto& [name, value] : constants) parser.DefineConst(name, value);
+    parser.DefineConst("pi", M_PI);
+    parser.SetExpr(text);
+    const double v = parser.Eval();
+    if (!std::isfinite(v)) {
+      if (error) *error = "the value is not finite";
+      return kNaN;
+    }
+    return v;
+  } catch (const mu::Parser::exception_type& e) {
+    if (error) *error = e.GetMsg();
+    return kNaN;
+  }
 }
 
 const std::string& Expression::text() const { return impl_->text; }

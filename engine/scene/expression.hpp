@@ -5,6 +5,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace loom {
 
@@ -31,5 +33,10 @@ class Expression {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Evaluates a formula in named constants once (e.g. alpha_s = "K/10" in the bulk and shear moduli).
+// On failure returns NaN and sets *error to muparser's message.
+double evaluate_formula(const std::string& text, const std::vector<std::pair<std::string, double>>& constants,
+                        std::string* error);
 
 }  // namespace loom

@@ -163,7 +163,25 @@ class Loader {
     b.material = find_by_name(s.materials, mat);
     if (t.has("material") && b.material == kNoIndex)
       t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
-    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}});
+    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi}});
+    if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&
+        s.materials[std::size_t(b.material)].model == MaterialModel::linear_elastic) {
+      // phi is tied to det F (eq 26): a finite-strain constraint that a small-strain law cannot honour
+      // (its volumetric stress follows tr eps, not J), and Newton stalls as nu -> 0.5.
+      t.error("element", "p1p1_uphi is a finite-strain formulation (phi = det F); use it with model = \"neo_hooke\"");
+    }
+    if (b.element != Formulation::p1p1_uphi && t.has("alpha_s")) {
+      t.error("alpha_s", "alpha_s is only used by element = \"p1p1_uphi\"");
+    } else if (b.material != kNoIndex) {
+      // seed 000 eq 30: a stress-like factor; a formula is evaluated in the body's material constants.
+      const auto& material = s.materials[std::size_t(b.material)];
+      const auto spec = t.expression("alpha_s");
+      const std::string text = spec ? spec->text : t.string("alpha_s");
+      std::string err;
+      b.alpha_s = evaluate_formula(text, {{"K", material.K}, {"G", material.G}, {"E", material.E}, {"nu", material.nu}}, &err);
+      if (!err.empty()) t.error("alpha_s", "invalid formula \"" + text + "\" (it may use K, G, E, nu): " + err);
+      else if (!(b.alpha_s >= 0.0)) t.error("alpha_s", "must be >= 0, got " + std::to_string(b.alpha_s));
+    }
     const auto mesh = t.table("mesh");
     MeshSpec& m = b.mesh;
     m.where = mesh.where();
@@ -223,7 +241,9 @@ class Loader {
       t.error("name", "the probe name \"" + p.name + "\" is already a column of probes.csv");
     if (p.name.find_first_of(",\"\n") != std::string::npos) t.error("name", "a probe name may not hold commas, quotes or newlines");
     const std::string kind = t.string("kind");
-    p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton}});
+    p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
+                                    {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump}});
+    p.max = t.string("bound") == "max";
     p.component = t.string("component") == "y" ? 1 : 0;
     auto needs = [&](const char* key) {
       if (t.present() && t.has("kind") && !t.has(key)) t.error("", std::string("missing key ") + key + " (needed by kind = \"" + kind + "\")");
@@ -258,7 +278,24 @@ class Loader {
       case ProbeKind::newton:
         unused("boundary"), unused("component"), unused("at"), unused("body");
         break;
+      case ProbeKind::extent:
+      case ProbeKind::pressure_jump: {
+        if (p.kind == ProbeKind::extent) needs("component");
+        else unused("component");
+        unused("boundary"), unused("at");
+        if (t.has("body")) {
+          const std::string body = t.string("body");
+          p.body = find_by_name(s.bodies, body);
+          if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+        } else if (s.bodies.size() == 1) {
+          p.body = 0;
+        } else {
+          t.error("", "missing key body (the scene has several bodies)");
+        }
+        break;
+      }
     }
+    if (p.kind != ProbeKind::extent) unused("bound");
     s.probes.push_back(p);
   }
 

@@ -20,7 +20,7 @@ enum class Integrator { static_, euler_backward };
 enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic };
 enum class MeshGenerator { rectangle, cooks_membrane };
-enum class ProbeKind { reaction, point, newton };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
 struct ExpressionSpec {
@@ -83,6 +83,7 @@ struct BodySpec {
   std::string name;
   Index material = 0;  // index into SceneSpec::materials
   Formulation element = Formulation::p1;
+  double alpha_s = 0.0;  // PPP stabilisation of p1p1_uphi, stress units (resolved from the scene's formula)
   MeshSpec mesh;
   VectorExpression body_force;
   SourceRef where;
@@ -104,7 +105,8 @@ struct ProbeSpec {
   Index boundary = kNoIndex;  // reaction
   int component = 0;          // 0: x, 1: y
   Vec2 at = Vec2::Zero();     // point
-  Index body = kNoIndex;      // point; kNoIndex: any body
+  Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
+  bool max = true;            // extent: largest (true) or smallest coordinate
   SourceRef where;
 };
 

@@ -59,7 +59,13 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body", K::table_array, "Bodies: a mesh, a material and an element.").require());
   s.push_back(key("body[].name", K::string, "Name boundaries and probes refer to.").require());
   s.push_back(key("body[].material", K::string, "Name of a [[material]].").require());
-  s.push_back(key("body[].element", K::choice, "Element formulation: p1 (linear displacement triangle).").one_of({"p1"}).by_default("p1"));
+  s.push_back(key("body[].element", K::choice,
+                  "Element formulation: p1 (linear displacement triangle), tri6 (quadratic displacement triangle, seed 000 §4.1), "
+                  "p1p1_uphi (mixed linear displacement / nodal volume dilatation with polynomial pressure projection, seed 000 §4.2).")
+                  .one_of({"p1", "tri6", "p1p1_uphi"}).by_default("p1"));
+  s.push_back(key("body[].alpha_s", K::expression,
+                  "PPP stabilisation factor alpha_s of p1p1_uphi (seed 000 eq 30), in stress units: a number, or a formula in the "
+                  "material's K and G (eq 47 suggests K; eq 52 and the benchmarks use K/10).").by_default("\"K/10\""));
   s.push_back(key("body[].mesh", K::table, "Mesh generator and its parameters.").require());
   s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)).")
                   .one_of({"rectangle", "cooks_membrane"}).require());
@@ -95,12 +101,15 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].name", K::string, "Column name in probes.csv.").require());
   s.push_back(key("probe[].kind", K::choice,
                   "reaction: sum over the boundary's prescribed dofs of the force the constraint exerts on the body "
-                  "(f_int + M a - f_ext); point: displacement of the node nearest to `at`; newton: Newton iterations of the step.")
-                  .one_of({"reaction", "point", "newton"}).require());
+                  "(f_int + M a - f_ext); point: displacement of the node nearest to `at`; newton: Newton iterations of the step; "
+                  "extent: largest (bound = max) or smallest coordinate of a body's nodes along `component`; "
+                  "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation).")
+                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump"}).require());
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction or point probe.").one_of({"x", "y"}));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe.").one_of({"x", "y"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point probe."));
-  s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body)."));
+  s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
+  s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));
   s.push_back(key("output.directory", K::string, "Output directory (relative to the working directory); `loom run --out` replaces it.")

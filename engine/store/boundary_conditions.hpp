@@ -28,6 +28,7 @@ struct BoundaryConditions {
 
   struct TractionEdge {
     Index a, b;  // corner nodes, counter-clockwise along the outline
+    Index mid;   // mid-node of a quadratic edge, or kNoIndex
     std::array<Index, D> expression;  // per component; kNoIndex: zero
   };
   std::vector<TractionEdge> traction_edges;

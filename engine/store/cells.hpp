@@ -14,17 +14,26 @@ namespace loom {
 enum class CellType { tri3, tri6 };
 
 // Element formulation of a cell block: what the assembly computes on its cells.
-//  p1: linear displacement triangle (tri3, one point).
-enum class Formulation { p1 };
+//  p1:        linear displacement triangle (tri3, one point);
+//  tri6:      quadratic displacement triangle (tri6, three points; seed 000 §4.1);
+//  p1p1_uphi: mixed linear triangle, displacement and nodal volume dilatation phi with polynomial
+//             pressure projection (tri3, three points; seed 000 §4.2).
+enum class Formulation { p1, tri6, p1p1_uphi };
 
 inline const char* formulation_name(Formulation f) {
   switch (f) {
     case Formulation::p1: return "p1";
+    case Formulation::tri6: return "tri6";
+    case Formulation::p1p1_uphi: return "p1p1_uphi";
   }
   return "?";
 }
 
+
 inline int nodes_per_cell(CellType t) { return t == CellType::tri3 ? 3 : 6; }
+inline CellType cell_type_of(Formulation f) { return f == Formulation::tri6 ? CellType::tri6 : CellType::tri3; }
+// Formulations with the nodal dilatation phi as an unknown.
+inline bool has_dilatation(Formulation f) { return f == Formulation::p1p1_uphi; }
 inline const char* cell_type_name(CellType t) { return t == CellType::tri3 ? "tri3" : "tri6"; }
 
 struct Cells {

@@ -19,7 +19,9 @@ struct Nodes {
   Column<V> v_n;     // converged velocity (dynamic integrators)
   Column<V> a;       // acceleration iterate (dynamic integrators)
   Column<V> a_n;     // converged acceleration (dynamic integrators)
-  Column<double> lumped_mass;  // row-sum mass, M/L^0 (dynamic with lumped mass)
+  Column<double> lumped_mass;  // lumped mass, M (dynamic with lumped mass)
+  Column<double> phi;          // volume dilatation iterate (mixed u-phi formulations; 1 elsewhere)
+  Column<double> phi_n;        // converged volume dilatation
 
   Nodes() {
     X.use();
@@ -32,19 +34,23 @@ struct Nodes {
   template <class Visit>
   void for_each_column(Visit&& f) {
     f("X", X), f("u", u), f("u_n", u_n), f("v", v), f("v_n", v_n), f("a", a), f("a_n", a_n),
-        f("lumped_mass", lumped_mass);
+        f("lumped_mass", lumped_mass), f("phi", phi), f("phi_n", phi_n);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {
     const_cast<Nodes*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
   }
 
-  // Sizes every used column to n entities (new entries are zero).
+  // Sizes every used column to n entities (new entries are zero, phi one: the undeformed dilatation).
   void resize(Index n) {
-    for_each_column([n](const char*, auto& c) {
+    for_each_column([this, n](const char*, auto& c) {
       using T = typename std::decay_t<decltype(c)>::value_type;
-      if constexpr (std::is_arithmetic_v<T>) c.resize(n, T(0));
-      else c.resize(n, T::Zero());
+      if constexpr (std::is_arithmetic_v<T>) {
+        const void* column = &c;
+        c.resize(n, column == &phi || column == &phi_n ? T(1) : T(0));
+      } else {
+        c.resize(n, T::Zero());
+      }
     });
   }
 

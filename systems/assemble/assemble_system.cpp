@@ -3,7 +3,10 @@
 #include <atomic>
 
 #include "engine/core/parallel.hpp"
+#include "systems/assemble/elements/element_mass.hpp"
 #include "systems/assemble/elements/p1_cell.hpp"
+#include "systems/assemble/elements/p1p1_uphi_cell.hpp"
+#include "systems/assemble/elements/tri6_cell.hpp"
 
 namespace loom {
 namespace {
@@ -28,60 +31,191 @@ Vec2 acceleration(const Nodes<2>& nodes, Index i, const Inertia& in) {
   return (nodes.u[i] - nodes.u_n[i]) * in.inv_dt2 - nodes.v_n[i] * in.inv_dt;
 }
 
-template <int NDOF>
-void scatter_cell(Index c, const CellScatter& sc, const Eigen::Matrix<double, NDOF, 1>& r,
-                  const Eigen::Matrix<double, NDOF, NDOF>* K, LinearSystem& system) {
-  for (int a = 0; a < NDOF; ++a) system.residual_full[sc.cell_dof(c, a)] += r[a];
-  if (!K) return;
-  double* values = system.pattern.matrix.valuePtr();
-  for (int a = 0; a < NDOF; ++a)
-    for (int b = 0; b < NDOF; ++b) {
-      const Index s = sc.matrix_slot(c, a, b);
-      if (s != kNoIndex) values[s] += (*K)(a, b);
+// Value of a dof at the iterate: displacement components first, then phi.
+double dof_value(const Nodes<2>& nodes, Index dof, int per_node) {
+  const Index node = dof / per_node;
+  const int comp = dof % per_node;
+  return comp < 2 ? nodes.u[node][comp] : nodes.phi[node];
+}
+
+// The element's local dofs in its own layout, mapped to the cell's dofs in the scatter (node-major with
+// per_node dofs per node): u-only elements skip the dilatation slot when the run carries one.
+template <int NE>
+struct LocalMap {
+  int to_scatter[NE];
+};
+
+template <int NEN>
+LocalMap<2 * NEN> displacement_map(int per_node) {
+  LocalMap<2 * NEN> m{};
+  for (int a = 0; a < NEN; ++a)
+    for (int i = 0; i < 2; ++i) m.to_scatter[2 * a + i] = a * per_node + i;
+  return m;
+}
+
+// Scatters a cell's local residual (with the Dirichlet lift) and tangent; see assemble_system.hpp.
+template <int NE>
+class CellScatterer {
+ public:
+  using Vector = Eigen::Matrix<double, NE, 1>;
+  using Matrix = Eigen::Matrix<double, NE, NE>;
+
+  CellScatterer(const LocalMap<NE>& map, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& nodes,
+                LinearSystem& system)
+      : map_(map), sc_(sc), bc_(bc), nodes_(nodes), system_(system) {}
+
+  // Gap (target - value) of the cell's prescribed dofs; returns true if any is non-zero.
+  bool gap(Index c, Vector& g) const {
+    g.setZero();
+    bool lagging = false;
+    const int pn = system_.dofs.per_node;
+    for (int k = 0; k < NE; ++k) {
+      const Index dof = sc_.cell_dof(c, map_.to_scatter[k]);
+      if (system_.dofs.kind[std::size_t(dof)] != DofKind::prescribed) continue;
+      g[k] = bc_.target[dof] - dof_value(nodes_, dof, pn);
+      lagging = lagging || g[k] != 0.0;
+    }
+    return lagging;
+  }
+
+  void scatter(Index c, const Vector& r, const Matrix* K) const {
+    for (int a = 0; a < NE; ++a) system_.residual_full[sc_.cell_dof(c, map_.to_scatter[a])] += r[a];
+    if (!K) return;
+    double* values = system_.pattern.matrix.valuePtr();
+    for (int a = 0; a < NE; ++a)
+      for (int b = 0; b < NE; ++b) {
+        const Index s = sc_.matrix_slot(c, map_.to_scatter[a], map_.to_scatter[b]);
+        if (s != kNoIndex) values[s] += (*K)(a, b);
+      }
+  }
+
+ private:
+  const LocalMap<NE>& map_;
+  const CellScatter& sc_;
+  const BoundaryConditions<2>& bc_;
+  const Nodes<2>& nodes_;
+  LinearSystem& system_;
+};
+
+// Runs `cell_body(c)` over the cells colour by colour, the cells of one colour in parallel.
+template <class Body>
+void for_each_cell_by_colour(const Cells& cells, Body&& cell_body) {
+  for (Index k = 0; k < cells.n_colours(); ++k) {
+    const Index begin = cells.colour_offsets[std::size_t(k)], end = cells.colour_offsets[std::size_t(k) + 1];
+    for_each_in(cells.by_colour.data() + begin, end - begin, cell_body);
+  }
+}
+
+// Consistent inertia of the displacement dofs: r += M a, K += M / dt^2 (M per unit density given).
+template <int NEN, int NE, class MassMatrix>
+void add_consistent_inertia(const Nodes<2>& nodes, const Cells& cells, Index c, const Inertia& in, double density,
+                            const MassMatrix& M, const int* u_index, Eigen::Matrix<double, NE, 1>& r,
+                            Eigen::Matrix<double, NE, NE>* K) {
+  for (int a = 0; a < NEN; ++a)
+    for (int b = 0; b < NEN; ++b) {
+      const double mab = density * M(a, b);
+      const Vec2 acc = acceleration(nodes, cells.node(c, b), in);
+      for (int i = 0; i < 2; ++i) {
+        r[u_index[2 * a + i]] += mab * acc[i];
+        if (K) (*K)(u_index[2 * a + i], u_index[2 * b + i]) += mab * in.inv_dt2;
+      }
     }
 }
 
-void assemble_p1_block(bool tangent, const Inertia& inertia, const std::vector<BodyMaterial>& materials,
-                       const Nodes<2>& nodes, const Cells& cells, const BoundaryConditions<2>& bc, QuadPoints<2>& quad,
-                       const CellScatter& sc, LinearSystem& system, std::atomic<Index>& inverted) {
-  for (Index k = 0; k < cells.n_colours(); ++k) {
-    const Index begin = cells.colour_offsets[std::size_t(k)], end = cells.colour_offsets[std::size_t(k) + 1];
-    for_each_in(cells.by_colour.data() + begin, end - begin, [&](Index c) {
-      P1Cell cell = gather_p1_cell(nodes, cells, quad, c);
-      // Dirichlet gap of the cell's prescribed dofs (zero once they have reached their targets).
-      P1Vector gap = P1Vector::Zero();
-      bool lagging = false;
-      for (int a = 0; a < 6; ++a) {
-        const Index dof = sc.cell_dof(c, a);
-        if (system.dofs.kind[std::size_t(dof)] != DofKind::prescribed) continue;
-        gap[a] = bc.target[dof] - nodes.u[dof / system.dofs.per_node][dof % system.dofs.per_node];
-        lagging = lagging || gap[a] != 0.0;
-      }
-      const bool need_K = tangent || lagging;
-      P1Vector r = P1Vector::Zero();
-      P1Matrix K = P1Matrix::Zero();
-      const BodyMaterial& material = materials[std::size_t(cells.body[c])];
-      const bool ok = std::visit(
-          [&](const auto& m) { return p1_internal(m, cell, quad.F[c], r, need_K ? &K : nullptr); }, material.model);
-      if (!ok) {
-        inverted.fetch_add(1, std::memory_order_relaxed);
-        return;
-      }
-      if (inertia.on && inertia.consistent) {
-        const double m = material.density * cell.volume0 / 12.0;  // consistent P1 mass: rho_0 A_0 (1 + d_ab) / 12
-        P1Vector acc;
-        for (int a = 0; a < 3; ++a) acc.segment<2>(2 * a) = acceleration(nodes, cells.node(c, a), inertia);
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) {
-            const double mab = m * (a == b ? 2.0 : 1.0);
-            r.segment<2>(2 * a) += mab * acc.segment<2>(2 * b);
-            if (need_K) K(2 * a, 2 * b) += mab * inertia.inv_dt2, K(2 * a + 1, 2 * b + 1) += mab * inertia.inv_dt2;
-          }
-      }
-      if (lagging) r += K * gap;
-      scatter_cell<6>(c, sc, r, tangent ? &K : nullptr, system);
-    });
-  }
+struct BlockArgs {
+  bool tangent;
+  const Inertia& inertia;
+  const std::vector<BodyMaterial>& materials;
+  const Nodes<2>& nodes;
+  const Cells& cells;
+  const BoundaryConditions<2>& bc;
+  QuadPoints<2>& quad;
+  const CellScatter& scatter;
+  LinearSystem& system;
+  std::atomic<Index>& inverted;
+};
+
+void assemble_p1_block(const BlockArgs& b) {
+  const auto map = displacement_map<3>(b.system.dofs.per_node);
+  const CellScatterer<6> out(map, b.scatter, b.bc, b.nodes, b.system);
+  static constexpr int u_index[6] = {0, 1, 2, 3, 4, 5};
+  for_each_cell_by_colour(b.cells, [&](Index c) {
+    const P1Cell cell = gather_p1_cell(b.nodes, b.cells, b.quad, c);
+    P1Vector gap;
+    const bool lagging = out.gap(c, gap);
+    const bool need_K = b.tangent || lagging;
+    P1Vector r = P1Vector::Zero();
+    P1Matrix K = P1Matrix::Zero();
+    const BodyMaterial& material = b.materials[std::size_t(b.cells.body[c])];
+    const bool ok = std::visit([&](const auto& m) { return p1_internal(m, cell, b.quad.F[c], r, need_K ? &K : nullptr); }, material.model);
+    if (!ok) return void(b.inverted.fetch_add(1, std::memory_order_relaxed));
+    if (b.inertia.on && b.inertia.consistent)
+      add_consistent_inertia<3, 6>(b.nodes, b.cells, c, b.inertia, material.density, tri3_consistent_mass(cell.volume0), u_index, r,
+                                   need_K ? &K : nullptr);
+    if (lagging) r += K * gap;
+    out.scatter(c, r, b.tangent ? &K : nullptr);
+  });
+}
+
+void assemble_tri6_block(const BlockArgs& b) {
+  const auto map = displacement_map<6>(b.system.dofs.per_node);
+  const CellScatterer<12> out(map, b.scatter, b.bc, b.nodes, b.system);
+  static constexpr int u_index[12] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+  for_each_cell_by_colour(b.cells, [&](Index c) {
+    const Tri6Cell cell = gather_tri6_cell(b.nodes, b.cells, b.quad, c);
+    Tri6Vector gap;
+    const bool lagging = out.gap(c, gap);
+    const bool need_K = b.tangent || lagging;
+    Tri6Vector r = Tri6Vector::Zero();
+    Tri6Matrix K = Tri6Matrix::Zero();
+    const BodyMaterial& material = b.materials[std::size_t(b.cells.body[c])];
+    Mat3* F = &b.quad.F[3 * c];
+    const bool ok = std::visit([&](const auto& m) { return tri6_internal(m, cell, F, r, need_K ? &K : nullptr); }, material.model);
+    if (!ok) return void(b.inverted.fetch_add(1, std::memory_order_relaxed));
+    if (b.inertia.on && b.inertia.consistent) {
+      double volume0 = 0.0;
+      for (int q = 0; q < 3; ++q) volume0 += cell.dV_n[q] / cell.F_n[q].determinant();
+      add_consistent_inertia<6, 12>(b.nodes, b.cells, c, b.inertia, material.density, tri6_consistent_mass(volume0), u_index, r,
+                                    need_K ? &K : nullptr);
+    }
+    if (lagging) r += K * gap;
+    out.scatter(c, r, b.tangent ? &K : nullptr);
+  });
+}
+
+void assemble_uphi_block(const BlockArgs& b) {
+  LocalMap<9> map{};
+  for (int k = 0; k < 9; ++k) map.to_scatter[k] = k;  // the run has three dofs per node: same layout
+  const CellScatterer<9> out(map, b.scatter, b.bc, b.nodes, b.system);
+  static constexpr int u_index[6] = {0, 1, 3, 4, 6, 7};
+  for_each_cell_by_colour(b.cells, [&](Index c) {
+    UPhiCell cell;
+    for (int a = 0; a < 3; ++a) {
+      const Index n = b.cells.node(c, a);
+      cell.du.row(a) = (b.nodes.u[n] - b.nodes.u_n[n]).transpose();
+      cell.phi[a] = b.nodes.phi[n];
+    }
+    cell.dN = Eigen::Map<const NodalVectors<3>>(b.quad.grad(3 * c));
+    for (int q = 0; q < 3; ++q) cell.dV_n[q] = b.quad.weight_n[3 * c + q], cell.F_n[q] = b.quad.F_n[3 * c + q];
+    UPhiVector gap;
+    const bool lagging = out.gap(c, gap);
+    const bool need_K = b.tangent || lagging;
+    UPhiVector r = UPhiVector::Zero();
+    UPhiMatrix K = UPhiMatrix::Zero();
+    const BodyMaterial& material = b.materials[std::size_t(b.cells.body[c])];
+    Mat3* Ft = &b.quad.F[3 * c];
+    const bool ok = std::visit(
+        [&](const auto& m) { return uphi_internal(m, material.alpha_over_G, cell, Ft, r, need_K ? &K : nullptr); }, material.model);
+    if (!ok) return void(b.inverted.fetch_add(1, std::memory_order_relaxed));
+    if (b.inertia.on && b.inertia.consistent) {
+      double volume0 = 0.0;
+      for (int q = 0; q < 3; ++q) volume0 += cell.dV_n[q] / cell.F_n[q].determinant();
+      add_consistent_inertia<3, 9>(b.nodes, b.cells, c, b.inertia, material.density, tri3_consistent_mass(volume0), u_index, r,
+                                   need_K ? &K : nullptr);
+    }
+    if (lagging) r += K * gap;
+    out.scatter(c, r, b.tangent ? &K : nullptr);
+  });
 }
 
 }  // namespace
@@ -97,11 +231,12 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
   system.residual_full.setZero();
 
   std::atomic<Index> inverted{0};
-  for (std::size_t b = 0; b < cells.size(); ++b) {
-    switch (cells[b].formulation) {
-      case Formulation::p1:
-        assemble_p1_block(tangent, inertia, materials, nodes, cells[b], bc, quad[b], system.scatter[b], system, inverted);
-        break;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const BlockArgs args{tangent, inertia, materials, nodes, cells[k], bc, quad[k], system.scatter[k], system, inverted};
+    switch (cells[k].formulation) {
+      case Formulation::p1: assemble_p1_block(args); break;
+      case Formulation::tri6: assemble_tri6_block(args); break;
+      case Formulation::p1p1_uphi: assemble_uphi_block(args); break;
     }
   }
 

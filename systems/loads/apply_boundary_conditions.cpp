@@ -3,30 +3,40 @@
 #include <cmath>
 
 #include "systems/assemble/elements/tri3.hpp"
+#include "systems/assemble/elements/tri6.hpp"
 
 namespace loom {
 namespace {
 
-// Two-point Gauss rule on an edge: exact for the cubic integrand N^A t(x) with t quadratic.
-constexpr double kGauss2[2] = {0.5 - 0.5 / 1.7320508075688772, 0.5 + 0.5 / 1.7320508075688772};
+// Three-point Gauss rule on [0, 1]: exact for N^A t(x) with quadratic N^A and t up to cubic.
+constexpr double kGaussPoints3[3] = {0.5 - 0.3872983346207417, 0.5, 0.5 + 0.3872983346207417};
+constexpr double kGaussWeights3[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
 
 void add_tractions(double t, const Nodes<2>& nodes, BoundaryConditions<2>& bc) {
   for (const auto& e : bc.traction_edges) {
     const Vec2 Xa = nodes.X[e.a], Xb = nodes.X[e.b];
     const double length = (Xb - Xa).norm();  // reference length: dead load (eq 8 pulled back to B_0)
-    for (double s : kGauss2) {
+    for (int g = 0; g < 3; ++g) {
+      const double s = kGaussPoints3[g], w = kGaussWeights3[g] * length;
       const Vec2 X = (1 - s) * Xa + s * Xb;
+      // Shape functions along the edge: linear, or quadratic with the mid-node.
+      const bool quadratic = e.mid != kNoIndex;
+      const double Na = quadratic ? (1 - s) * (1 - 2 * s) : 1 - s;
+      const double Nb = quadratic ? s * (2 * s - 1) : s;
+      const double Nm = quadratic ? 4 * s * (1 - s) : 0.0;
       for (int d = 0; d < 2; ++d) {
         if (e.expression[std::size_t(d)] == kNoIndex) continue;
-        const double value = bc.expressions[std::size_t(e.expression[std::size_t(d)])](t, X.x(), X.y());
-        bc.external[bc.per_node * e.a + d] += 0.5 * length * (1 - s) * value;
-        bc.external[bc.per_node * e.b + d] += 0.5 * length * s * value;
+        const double value = w * bc.expressions[std::size_t(e.expression[std::size_t(d)])](t, X.x(), X.y());
+        bc.external[bc.per_node * e.a + d] += Na * value;
+        bc.external[bc.per_node * e.b + d] += Nb * value;
+        if (quadratic) bc.external[bc.per_node * e.mid + d] += Nm * value;
       }
     }
   }
 }
 
-// f_vol^A = int rho_0 N^A b dV_0 (eq 7), three-point rule on the reference cell.
+// f_vol^A = int rho_0 N^A b dV_0 (eq 7) on the reference cell (straight, mid-nodes at the midpoints):
+// three-point rule for linear cells, the degree-4 rule for quadratic ones.
 void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& cells,
                      const std::vector<BodyMaterial>& materials, BoundaryConditions<2>& bc) {
   for (const Cells& cb : cells)
@@ -38,13 +48,21 @@ void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& 
       const Vec2 X[3] = {nodes.X[n[0]], nodes.X[n[1]], nodes.X[n[2]]};
       const double area = 0.5 * ((X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[2] - X[0]).x() * (X[1] - X[0]).y());
       const double rho = materials[std::size_t(body)].density;
-      for (const auto& bary : kTri3Rule3) {
-        const Vec2 Xq = bary[0] * X[0] + bary[1] * X[1] + bary[2] * X[2];
+      auto add_point = [&](const double* l, double weight, const double* N, int n_nodes) {
+        const Vec2 Xq = l[0] * X[0] + l[1] * X[1] + l[2] * X[2];
         for (int d = 0; d < 2; ++d) {
           if (exprs[std::size_t(d)] == kNoIndex) continue;
           const double b = bc.expressions[std::size_t(exprs[std::size_t(d)])](t, Xq.x(), Xq.y());
-          for (int a = 0; a < 3; ++a) bc.external[bc.per_node * n[a] + d] += rho * b * bary[a] * area / 3.0;
+          for (int a = 0; a < n_nodes; ++a) bc.external[bc.per_node * n[a] + d] += rho * b * N[a] * weight * area;
         }
+      };
+      if (cb.type == CellType::tri6) {
+        for (const auto& p : kTriangleRule6) {
+          const Tri6Values N = tri6_values(p.l[0], p.l[1], p.l[2]);
+          add_point(p.l, p.w, N.data(), 6);
+        }
+      } else {
+        for (const auto& l : kTri3Rule3) add_point(l, 1.0 / 3.0, l, 3);
       }
     }
 }

@@ -1,14 +1,31 @@
 #include "systems/output/evaluate_probes.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 
 namespace loom {
 
-ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Index>& node_body) {
+double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, Index cell) {
+  double p = 0.0;
+  for (int q = 0; q < quad.per_cell; ++q) {
+    Mat3 sigma;
+    if (!cauchy_stress(material.model, quad.F_n[cell * quad.per_cell + q], sigma)) return kNaN;
+    p -= sigma.trace() / 3.0;
+  }
+  return p / quad.per_cell;
+}
+
+ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Cells>& cells,
+                      const std::vector<Index>& node_body) {
   ProbePlan plan;
   plan.probes = scene.probes;
   for (const auto& p : scene.probes) {
     Index best = kNoIndex;
+    std::vector<Index> body_nodes;
+    std::vector<std::array<Index, 3>> pairs;
     if (p.kind == ProbeKind::point) {
       double best_d = std::numeric_limits<double>::max();
       for (Index i = 0; i < nodes.size(); ++i) {
@@ -16,14 +33,36 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         const double d = (nodes.X[i] - p.at).squaredNorm();
         if (d < best_d) best_d = d, best = i;
       }
+    } else if (p.kind == ProbeKind::extent) {
+      for (Index i = 0; i < nodes.size(); ++i)
+        if (node_body[std::size_t(i)] == p.body) body_nodes.push_back(i);
+    } else if (p.kind == ProbeKind::pressure_jump) {
+      // Interior edges: corner pairs shared by two cells of the body (in the same block).
+      for (std::size_t b = 0; b < cells.size(); ++b) {
+        std::map<std::uint64_t, Index> first;
+        const Cells& cb = cells[b];
+        for (Index c = 0; c < cb.size(); ++c) {
+          if (cb.body[c] != p.body) continue;
+          for (int s = 0; s < 3; ++s) {
+            const Index x = cb.node(c, s), y = cb.node(c, (s + 1) % 3);
+            const std::uint64_t key = (std::uint64_t(std::min(x, y)) << 32) | std::uint64_t(std::max(x, y));
+            auto [it, inserted] = first.emplace(key, c);
+            if (!inserted) pairs.push_back({Index(b), it->second, c});
+          }
+        }
+      }
     }
     plan.node.push_back(best);
+    plan.nodes.push_back(std::move(body_nodes));
+    plan.cell_pairs.push_back(std::move(pairs));
   }
   return plan;
 }
 
-void evaluate_probes(const StepContext&, const ProbePlan& plan, const Nodes<2>& nodes, const LinearSystem& system,
-                     const BoundaryConditions<2>& bc, int newton_iterations, std::vector<double>& values) {
+void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
+                     const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
+                     const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                     std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
     const ProbeSpec& p = plan.probes[k];
@@ -43,6 +82,25 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const Nodes<2>& 
       case ProbeKind::newton:
         values[k] = newton_iterations;
         break;
+      case ProbeKind::extent: {
+        double e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+        for (Index i : plan.nodes[k]) {
+          const double x = nodes.position_n(i)[p.component];
+          e = p.max ? std::max(e, x) : std::min(e, x);
+        }
+        values[k] = e;
+        break;
+      }
+      case ProbeKind::pressure_jump: {
+        double sum = 0.0;
+        for (const auto& [block, c1, c2] : plan.cell_pairs[k]) {
+          const Cells& cb = cells[std::size_t(block)];
+          const BodyMaterial& m = materials[std::size_t(cb.body[c1])];
+          sum += std::abs(cell_pressure(m, quad[std::size_t(block)], c1) - cell_pressure(m, quad[std::size_t(block)], c2));
+        }
+        values[k] = plan.cell_pairs[k].empty() ? 0.0 : sum / double(plan.cell_pairs[k].size());
+        break;
+      }
     }
   }
 }

@@ -1,28 +1,45 @@
 // Values of the scene's probes at the converged state, in the order of SceneSpec::probes:
-//  reaction: sum over the boundary's prescribed dofs of the given component of r = f_int + M a - f_ext,
-//            the force the constraint exerts on the body (its sign follows the axis);
-//  point:    displacement component of the node nearest to the probe's reference coordinates;
-//  newton:   Newton iterations (linear solves) of the step, summed over its cut-back sub-steps.
+//  reaction:      sum over the boundary's prescribed dofs of the given component of r = f_int + M a - f_ext,
+//                 the force the constraint exerts on the body (its sign follows the axis);
+//  point:         displacement component of the node nearest to the probe's reference coordinates;
+//  newton:        Newton iterations (linear solves) of the step, summed over its cut-back sub-steps;
+//  extent:        largest or smallest current coordinate of the body's nodes along a component;
+//  pressure_jump: mean over the body's interior edges of |p_1 - p_2|, the cell pressures
+//                 p = -tr(sigma)/3 (averaged over a cell's points) on either side: a measure of pressure
+//                 oscillations (seed 000 Fig 9).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "engine/graph/step_context.hpp"
 #include "engine/linalg/linear_system.hpp"
 #include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
 #include "engine/store/nodes.hpp"
+#include "engine/store/quad_points.hpp"
+#include "systems/assemble/materials/material.hpp"
 
 namespace loom {
 
 struct ProbePlan {
   std::vector<ProbeSpec> probes;
-  std::vector<Index> node;  // point probes: nearest node; others kNoIndex
+  std::vector<Index> node;                    // point probes: nearest node; others kNoIndex
+  std::vector<std::vector<Index>> nodes;      // extent probes: the body's nodes
+  std::vector<std::vector<std::array<Index, 3>>> cell_pairs;  // pressure_jump: (block, cell, cell) across interior edges
 };
 
-// Finds the node of each point probe (nearest in reference coordinates, among the nodes of its body).
-ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Index>& node_body);
+// Finds the node of each point probe (nearest in reference coordinates, among the nodes of its body), the
+// nodes of extent probes and the interior edges of pressure_jump probes.
+ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Cells>& cells,
+                      const std::vector<Index>& node_body);
 
-void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const Nodes<2>& nodes, const LinearSystem& system,
-                     const BoundaryConditions<2>& bc, int newton_iterations, std::vector<double>& values);
+void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
+                     const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
+                     const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                     std::vector<double>& values);
+
+// Mean pressure -tr(sigma)/3 of a cell over its points, from the committed deformation (F_n).
+double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, Index cell);
 
 }  // namespace loom

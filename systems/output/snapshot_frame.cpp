@@ -14,6 +14,8 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   frame.points.resize(3 * std::size_t(n));
   FrameArray displacement{"displacement", 3, std::vector<double>(3 * std::size_t(n), 0.0)};
   FrameArray velocity{"velocity", 3, {}};
+  FrameArray phi{"phi", 1, {}};
+  if (nodes.phi_n.used()) phi.values.assign(nodes.phi_n.values().begin(), nodes.phi_n.values().end());
   if (nodes.v_n.used()) velocity.values.assign(3 * std::size_t(n), 0.0);
   for_each_index(n, [&](Index i) {
     const Vec2 x = nodes.position_n(i);
@@ -71,6 +73,7 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   frame.point_arrays.clear();
   frame.point_arrays.push_back(std::move(displacement));
   if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
+  if (!phi.values.empty()) frame.point_arrays.push_back(std::move(phi));
   frame.cell_arrays = {std::move(stress), std::move(pressure), std::move(J), std::move(von_mises), std::move(body)};
 }
 

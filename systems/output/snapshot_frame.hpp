@@ -1,5 +1,6 @@
 // Takes an output frame of the converged state (u_n, F_n): node positions in the current configuration,
-// point data displacement (and velocity for dynamic runs), cell data Cauchy stress (9 components,
+// point data displacement (velocity for dynamic runs, phi for mixed u-phi runs), cell data Cauchy stress
+// (9 components,
 // row-major), pressure = -tr(sigma)/3, J = det F, von Mises stress sqrt(3/2 dev(sigma):dev(sigma)), body.
 // Cells with several quadrature points report the average of their points.
 #pragma once

@@ -23,7 +23,9 @@ LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditi
   for_each_index(dofs.n_dofs(), [&](Index dof) {
     switch (dofs.kind[std::size_t(dof)]) {
       case DofKind::free: system.increment_full[dof] = system.increment[dofs.equation[std::size_t(dof)]]; break;
-      case DofKind::prescribed: system.increment_full[dof] = bc.target[dof] - nodes.u[dof / dofs.per_node][dof % dofs.per_node]; break;
+      case DofKind::prescribed:  // only displacement components are ever prescribed
+        system.increment_full[dof] = bc.target[dof] - nodes.u[dof / dofs.per_node][dof % dofs.per_node];
+        break;
       case DofKind::absent: system.increment_full[dof] = 0.0; break;
     }
   });

@@ -18,6 +18,7 @@ void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<
       nodes.v_n[i] = v;
     }
     nodes.u_n[i] = nodes.u[i];
+    if (nodes.phi.used()) nodes.phi_n[i] = nodes.phi[i];
   });
   for (auto& q : quad) for_each_index(q.size(), [&](Index p) { q.F_n[p] = q.F[p]; });
   const Index bad = compute_geometry(nodes, cells, quad);

@@ -1,5 +1,7 @@
 #include "systems/update/lumped_mass.hpp"
 
+#include "systems/assemble/elements/element_mass.hpp"
+
 namespace loom {
 
 void compute_lumped_mass(const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
@@ -11,8 +13,13 @@ void compute_lumped_mass(const std::vector<Cells>& cells, const std::vector<Quad
     for (Index c = 0; c < cb.size(); ++c) {  // serial: scatter to shared nodes, done once
       double volume0 = 0.0;
       for (int q = 0; q < qb.per_cell; ++q) volume0 += qb.weight_n[c * qb.per_cell + q] / qb.F_n[c * qb.per_cell + q].determinant();
-      const double m = materials[std::size_t(cb.body[c])].density * volume0 / cb.stride;
-      for (int a = 0; a < cb.stride; ++a) nodes.lumped_mass[cb.node(c, a)] += m;
+      const double rho = materials[std::size_t(cb.body[c])].density;
+      if (cb.type == CellType::tri6) {
+        const auto m = tri6_lumped_mass(volume0);
+        for (int a = 0; a < 6; ++a) nodes.lumped_mass[cb.node(c, a)] += rho * m[a];
+      } else {
+        for (int a = 0; a < 3; ++a) nodes.lumped_mass[cb.node(c, a)] += rho * volume0 / 3.0;
+      }
     }
   }
 }

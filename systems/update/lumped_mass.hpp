@@ -1,5 +1,5 @@
-// Row-sum lumped mass of every node, m_A = sum_cells rho_0 A_0 / 3 for linear triangles (seed 000 eq 5
-// with the reference volume dV_0 = dV_n / J_n).
+// Lumped mass of every node (seed 000 eq 5 with the reference volume dV_0 = dV_n / J_n): row sum
+// rho_0 A_0 / 3 for linear triangles, HRZ for quadratic ones (see element_mass.hpp).
 #pragma once
 
 #include <vector>

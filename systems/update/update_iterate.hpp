@@ -1,5 +1,5 @@
-// Moves the Newton iterate: u += step * du on every dof (free: the solved increment; prescribed: the
-// remaining gap to the target, so prescribed dofs reach their values with a full step).
+// Moves the Newton iterate: u (and phi) += step * du on every dof (free: the solved increment;
+// prescribed: the remaining gap to the target, so prescribed dofs reach their values with a full step).
 #pragma once
 
 #include "engine/linalg/linear_system.hpp"
@@ -9,7 +9,7 @@ namespace loom {
 
 void update_iterate(double step, const LinearSystem& system, Nodes<2>& nodes);
 
-// Starts a (sub)step from the converged state: u = u_n (also after a failed attempt).
+// Starts a (sub)step from the converged state: u = u_n, phi = phi_n (also after a failed attempt).
 void reset_iterate(Nodes<2>& nodes);
 
 }  // namespace loom

@@ -13,12 +13,10 @@
 #include <vector>
 
 #include "engine/drivers/newton.hpp"
-#include "engine/methods/build_boundary_conditions.hpp"
-#include "engine/methods/build_mesh.hpp"
+#include "engine/methods/fem_model.hpp"
 #include "engine/methods/fem_method.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/scene/scene_loader.hpp"
-#include "systems/assemble/compute_geometry.hpp"
 #include "systems/loads/apply_boundary_conditions.hpp"
 #include "systems/update/commit_step.hpp"
 #include "systems/update/update_iterate.hpp"
@@ -55,65 +53,41 @@ inline SceneResult run_scene(const SceneSpec& scene) {
 // FemRun's graph (apply_boundary_conditions -> newton -> commit), one whole step at a time (no cut-back).
 class SteppedFem {
  public:
-  explicit SteppedFem(const SceneSpec& scene) : scene_(scene), solver_(scene.solver.linear) {
-    if (scene_.time.integrator != Integrator::static_) throw std::runtime_error("SteppedFem: static scenes only");
-    ctx_.scene = &scene_;
-    node_body_ = build_mesh(scene_, nodes_, cells_);
-    materials_ = body_materials(scene_);
-    allocate_quad_points(cells_, quad_);
-    if (compute_geometry(nodes_, cells_, quad_) != 0) throw std::runtime_error("SteppedFem: inverted mesh");
-    bc_ = build_boundary_conditions(scene_, nodes_, cells_, node_body_, 2);
-    system_.dofs.build(2, dof_kinds(bc_, nodes_.size(), 2));
-    std::vector<const Cells*> blocks;
-    for (const auto& c : cells_) blocks.push_back(&c);
-    build_pattern(blocks, system_.dofs, system_.pattern);
-    system_.scatter.resize(cells_.size());
-    for (std::size_t b = 0; b < cells_.size(); ++b) build_scatter(cells_[b], system_.dofs, system_.pattern, system_.scatter[b]);
-    system_.resize_vectors();
+  explicit SteppedFem(const SceneSpec& scene) : m_(scene), solver_(m_.linear_solver) {
+    if (m_.scene.time.integrator != Integrator::static_) throw std::runtime_error("SteppedFem: static scenes only");
+    ctx_.scene = &m_.scene;
   }
 
   // Solves the next scene step; commits it if Newton converged.
   NewtonReport step() {
     ++ctx_.step;
-    ctx_.dt = scene_.time.dt;
-    ctx_.t = ctx_.step * scene_.time.dt;
+    ctx_.dt = m_.scene.time.dt;
+    ctx_.t = ctx_.step * m_.scene.time.dt;
     ctx_.step_end = true;
-    apply_boundary_conditions(ctx_, nodes_, cells_, materials_, bc_);
-    reset_iterate(nodes_);
-    NewtonSettings settings;
-    settings.max_iterations = scene_.solver.max_iterations;
-    settings.residual_relative = scene_.solver.residual_relative;
-    settings.residual_absolute = scene_.solver.residual_absolute;
-    settings.increment_relative = scene_.solver.increment_relative;
-    settings.line_search = scene_.solver.line_search;
-    FemNewtonProblem problem(ctx_, materials_, cells_, bc_, nodes_, quad_, system_, solver_, timers_);
-    NewtonReport report = solve_newton(problem, settings, timers_);
-    if (report.converged) commit_step(ctx_, cells_, nodes_, quad_);
+    apply_boundary_conditions(ctx_, m_.nodes, m_.cells, m_.materials, m_.bc);
+    reset_iterate(m_.nodes);
+    FemNewtonProblem problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_);
+    NewtonReport report = solve_newton(problem, newton_settings_of(m_.scene.solver), timers_);
+    if (report.converged) commit_step(ctx_, m_.cells, m_.nodes, m_.quad);
     return report;
   }
 
-  const Nodes<2>& nodes() const { return nodes_; }
-  Index dofs() const { return system_.dofs.n_free; }
+  const FemModel& model() const { return m_; }
+  const Nodes<2>& nodes() const { return m_.nodes; }
+  Index dofs() const { return m_.system.dofs.n_free; }
   Index nearest_node(const Vec2& X) const {
     Index best = kNoIndex;
     double best_d = std::numeric_limits<double>::max();
-    for (Index i = 0; i < nodes_.size(); ++i)
-      if ((nodes_.X[i] - X).squaredNorm() < best_d) best_d = (nodes_.X[i] - X).squaredNorm(), best = i;
+    for (Index i = 0; i < m_.nodes.size(); ++i)
+      if ((m_.nodes.X[i] - X).squaredNorm() < best_d) best_d = (m_.nodes.X[i] - X).squaredNorm(), best = i;
     return best;
   }
 
  private:
-  SceneSpec scene_;
+  FemModel m_;
   StepContext ctx_;
   Timers timers_;
-  Nodes<2> nodes_;
-  std::vector<Cells> cells_;
-  std::vector<QuadPoints<2>> quad_;
-  std::vector<BodyMaterial> materials_;
-  BoundaryConditions<2> bc_;
-  LinearSystem system_;
   LinearSolve solver_;
-  std::vector<Index> node_body_;
 };
 
 }  // namespace loom::verification

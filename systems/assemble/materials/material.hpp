@@ -25,7 +25,8 @@ inline Material make_material(const MaterialSpec& m) {
 // What the kernels need to know of a body's material: the constitutive model and the reference density.
 struct BodyMaterial {
   Material model;
-  double density = 0.0;  // rho_0
+  double density = 0.0;       // rho_0
+  double alpha_over_G = 0.0;  // PPP stabilisation alpha_s / G of mixed u-phi elements (seed 000 eq 30)
 };
 
 // Indexed like SceneSpec::bodies.
@@ -33,7 +34,7 @@ inline std::vector<BodyMaterial> body_materials(const SceneSpec& scene) {
   std::vector<BodyMaterial> r;
   for (const auto& b : scene.bodies) {
     const auto& m = scene.materials[std::size_t(b.material)];
-    r.push_back({make_material(m), m.density});
+    r.push_back({make_material(m), m.density, b.alpha_s / m.G});
   }
   return r;
 }

@@ -1,0 +1,38 @@
+// The stores of a mesh-based run built from a scene (the fem recipe's step 1-3, shared with tests and
+// benchmarks that drive the systems themselves): nodes with the columns the scene needs, cell blocks
+// and their quadrature points with the reference geometry, materials, boundary conditions, and the
+// Newton system (dof numbering, sparsity, scatter).
+#pragma once
+
+#include <vector>
+
+#include "engine/linalg/linear_solver.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/scene/scene_spec.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/points.hpp"
+#include "engine/store/quad_points.hpp"
+#include "systems/assemble/materials/material.hpp"
+
+namespace loom {
+
+struct FemModel {
+  // Throws InputError for scene errors that need the mesh (empty regions, degenerate meshes, ...).
+  explicit FemModel(const SceneSpec& scene);
+
+  SceneSpec scene;
+  Nodes<2> nodes;
+  Points<2> points;  // not used by mesh-based FEM: no column is allocated
+  std::vector<Cells> cells;
+  std::vector<QuadPoints<2>> quad;
+  std::vector<BodyMaterial> materials;
+  BoundaryConditions<2> bc;
+  LinearSystem system;
+  std::vector<Index> node_body;  // owning body of each node
+  bool mixed = false;            // some body carries the dilatation phi (three dofs per node)
+  LinearSolverKind linear_solver = LinearSolverKind::automatic;  // what the tangent allows
+};
+
+}  // namespace loom
