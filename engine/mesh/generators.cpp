@@ -11,6 +11,13 @@
 namespace loom {
 namespace {
 
+// In-circle determinant of d against the counter-clockwise triangle (a, b, c): positive inside.
+double incircle(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const Vec2 ad = a - d, bd = b - d, cd = c - d;
+  return ad.squaredNorm() * (bd.x() * cd.y() - cd.x() * bd.y()) - bd.squaredNorm() * (ad.x() * cd.y() - cd.x() * ad.y()) +
+         cd.squaredNorm() * (ad.x() * bd.y() - bd.x() * ad.y());
+}
+
 // Triangulates the strip between two rows of nodes that both span the same x-interval, by merging the
 // rows in order of x (a "zipper"). Where both rows advance at the same x (a square), `diag_up` picks the
 // diagonal: true cuts lower-left to upper-right.
@@ -28,7 +35,15 @@ void zip_rows(const std::vector<Index>& lower, const std::vector<Index>& upper, 
       const double xl = X[lower[i + 1]].x(), xu = X[upper[j + 1]].x();
       const double tol = 1e-12 * (1.0 + std::abs(xl));
       if (std::abs(xl - xu) <= tol) {
+        // A quadrilateral. The shifted pattern cuts it by its Delaunay diagonal (only its row ends have
+        // quadrilaterals, trapezoids), so that a PFEM remesh of the generated points finds the same cells
+        // (seed 000 §5.1 relies on no spurious connectivity changes). right and alternating keep their
+        // diagonal (what they are for).
+        const Vec2 &a = X[std::size_t(lower[i])], &b = X[std::size_t(lower[i + 1])], &c = X[std::size_t(upper[j + 1])], &d = X[std::size_t(upper[j])];
+        const double in_circle = incircle(a, b, c, d);  // > 0: d inside the circle through a, b, c
+        const double scale = (c - a).squaredNorm() * (c - a).squaredNorm();
         bool diag_up = pattern != GridPattern::alternating || (square + row) % 2 == 0;
+        if (pattern == GridPattern::shifted && std::abs(in_circle) > 1e-12 * scale) diag_up = in_circle < 0.0;
         // The square (lower[i], lower[i+1], upper[j+1], upper[j]) becomes two triangles.
         if (diag_up) {
           tris.insert(tris.end(), {lower[i], lower[i + 1], upper[j + 1]});

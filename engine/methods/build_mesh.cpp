@@ -25,29 +25,34 @@ MeshData generate_body_mesh(const MeshSpec& spec) {
 }
 
 std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vector<Cells>& cells) {
+  // Corner nodes of every body first, then the mid-nodes of quadratic bodies: the corners are the
+  // particles PFEM keeps across remeshes, the mid-nodes are dropped and re-created (seed 000 §4.1).
   std::vector<Index> node_body;
   std::vector<Vec2> X;
-  cells.clear();
+  std::vector<std::vector<Index>> corner_triangles(scene.bodies.size());
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-    const BodySpec& body = scene.bodies[b];
-    MeshData mesh = generate_body_mesh(body.mesh);
-    const CellType type = cell_type_of(body.element);
-    const std::vector<Index> connectivity = type == CellType::tri6 ? add_mid_nodes(mesh.X, mesh.triangles) : mesh.triangles;
-    const int stride = nodes_per_cell(type);
+    MeshData mesh = generate_body_mesh(scene.bodies[b].mesh);
     const Index offset = Index(X.size());
     X.insert(X.end(), mesh.X.begin(), mesh.X.end());
     node_body.insert(node_body.end(), mesh.X.size(), Index(b));
+    for (Index v : mesh.triangles) corner_triangles[b].push_back(offset + v);
+  }
+  cells.clear();
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const Formulation element = scene.bodies[b].element;
+    const CellType type = cell_type_of(element);
+    const std::size_t before = X.size();
+    const std::vector<Index> connectivity = type == CellType::tri6 ? add_mid_nodes(X, corner_triangles[b]) : corner_triangles[b];
+    node_body.insert(node_body.end(), X.size() - before, Index(b));
     Cells* block = nullptr;
     for (auto& c : cells)
-      if (c.formulation == body.element) block = &c;
+      if (c.formulation == element) block = &c;
     if (!block) {
-      cells.emplace_back(type, body.element);
+      cells.emplace_back(type, element);
       block = &cells.back();
     }
-    for (std::size_t t = 0; t < connectivity.size() / std::size_t(stride); ++t) {
-      for (int a = 0; a < stride; ++a) block->nodes.values().push_back(offset + connectivity[t * std::size_t(stride) + std::size_t(a)]);
-      block->body.values().push_back(Index(b));
-    }
+    block->nodes.values().insert(block->nodes.values().end(), connectivity.begin(), connectivity.end());
+    block->body.values().insert(block->body.values().end(), connectivity.size() / std::size_t(block->stride), Index(b));
   }
   nodes.resize(Index(X.size()));
   for (Index i = 0; i < Index(X.size()); ++i) nodes.X[i] = X[std::size_t(i)];

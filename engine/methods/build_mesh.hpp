@@ -14,8 +14,8 @@ namespace loom {
 // Generates the mesh of one body from its spec (generator, distortion, scale).
 MeshData generate_body_mesh(const MeshSpec& spec);
 
-// Fills nodes.X (sizing every used node column) and the cell blocks (coloured). Returns the body of
-// each node.
+// Fills nodes.X (sizing every used node column) and the cell blocks (coloured). Corner nodes of all
+// bodies come first, mid-nodes of quadratic cells after them. Returns the body of each node.
 std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vector<Cells>& cells);
 
 }  // namespace loom

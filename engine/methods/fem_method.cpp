@@ -34,6 +34,15 @@ std::string file_stem(const std::string& name) {
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  pfem_ = scene_.scene.method == Method::pfem;
+  if (pfem_) {
+    const PfemSpec& p = scene_.pfem;
+    pfem_settings_.remesh = {p.alpha, p.lchar, p.local};
+    pfem_settings_.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
+    pfem_settings_.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
+    pfem_settings_.every = p.every;
+    topology_ = initial_topology(m_);
+  }
   probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   build_graph();
 }
@@ -41,7 +50,7 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
 FemRun::~FemRun() = default;
 
 void FemRun::build_graph() {
-  graph_ = std::make_unique<StepGraph>("fem", ctx_, timers_);
+  graph_ = std::make_unique<StepGraph>(pfem_ ? "pfem" : "fem", ctx_, timers_);
   StepGraph& g = *graph_;
   g.name_store(&m_.nodes, "nodes");
   g.name_store(&m_.cells, "cells");
@@ -53,6 +62,13 @@ void FemRun::build_graph() {
   g.name_store(&probe_writer_, "probes.csv");
   g.name_store(&writer_, "vtk_writer");
 
+  if (pfem_) {
+    g.name_store(&topology_, "pfem_topology");
+    const auto remesh = g.add_node("remesh", {{&m_.materials}, {&topology_, &m_.nodes, &m_.cells, &m_.quad, &m_.bc, &m_.system}},
+                                   [this] { remesh_node(); },
+                                   "triangulate + alpha shape, transfer the history, rebuild dofs/sparsity where the connectivity changed");
+    g.run_if(remesh, nullptr, [this] { return ctx_.step % pfem_settings_.every == 0; });
+  }
   g.add_system("apply_boundary_conditions", &apply_boundary_conditions, m_.nodes, m_.cells, m_.materials, m_.bc);
   g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
@@ -64,6 +80,11 @@ void FemRun::build_graph() {
                                  "snapshot here; the VTK file is written while the next step runs");
   g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
   g.build();
+}
+
+void FemRun::remesh_node() {
+  last_remesh_ = remesh_model(pfem_settings_, topology_, m_, timers_);
+  if (last_remesh_.changed) probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
 }
 
 void FemRun::newton_node() {
@@ -83,7 +104,8 @@ void FemRun::newton_node() {
 }
 
 void FemRun::probes_node() {
-  evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations, probe_values_);
+  evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations,
+                  last_remesh_.stats(), probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 

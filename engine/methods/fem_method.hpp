@@ -1,6 +1,7 @@
-// The fem recipe: updated-Lagrangian finite elements on a fixed mesh (no remeshing), the reference every
-// other method is measured against. Per (sub)step the graph runs
-//   apply_boundary_conditions -> newton [assemble -> solve -> update]* -> commit -> {probes, output}
+// The mesh-based recipes. fem: updated-Lagrangian finite elements on a fixed mesh, the reference every
+// other method is measured against. pfem: the same, preceded by a remesh stage (seed 000 §3: triangulate
+// the particles, transfer the state, rebuild the system where the connectivity changed). Per (sub)step:
+//   [remesh ->] apply_boundary_conditions -> newton [assemble -> solve -> update]* -> commit -> {probes, output}
 // with commit, probes and output only on a converged state, probes and output only at the end of a
 // scene step, and output only on frame steps; the VTK frame is written concurrently with the next step.
 #pragma once
@@ -17,6 +18,7 @@
 #include "engine/linalg/linear_system.hpp"
 #include "engine/methods/fem_model.hpp"
 #include "engine/methods/method.hpp"
+#include "engine/methods/pfem_remesh.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
 #include "engine/store/nodes.hpp"
@@ -44,6 +46,7 @@ class FemRun final : public MethodRun {
   const LinearSystem& system() const { return m_.system; }
   const BoundaryConditions<2>& boundary_conditions() const { return m_.bc; }
   const std::vector<double>& probe_values() const { return probe_values_; }
+  const RemeshReport& last_remesh() const { return last_remesh_; }
   const StepGraph& graph() const { return *graph_; }
   const Timers& timers() const override { return timers_; }
 
@@ -51,6 +54,7 @@ class FemRun final : public MethodRun {
   void build_graph();
   void open_output();
   void write_initial_state();
+  void remesh_node();
   void newton_node();
   void probes_node();
   void output_node();
@@ -62,6 +66,12 @@ class FemRun final : public MethodRun {
   StepContext ctx_;
   Timers timers_;
   StepStatus status_;
+
+  // PFEM (method = pfem): settings, the topology the next remesh starts from, the last remesh
+  bool pfem_ = false;
+  PfemSettings pfem_settings_;
+  PfemTopology topology_;
+  RemeshReport last_remesh_;
 
   // Per-run workspace
   LinearSolve solver_;

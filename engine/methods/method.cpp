@@ -7,10 +7,11 @@ namespace loom {
 
 std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options) {
   switch (scene.scene.method) {
-    case Method::fem: return std::make_unique<FemRun>(scene, options);
+    case Method::fem:
+    case Method::pfem: return std::make_unique<FemRun>(scene, options);
     default: break;
   }
-  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem)");
+  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, pfem)");
 }
 
 }  // namespace loom

@@ -1,6 +1,7 @@
 #include "engine/scene/scene_loader.hpp"
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -84,6 +85,7 @@ class Loader {
     for (const auto& b : root_.array("boundary")) read_boundary(s, b);
     s.body_force = read_vector(root_.table("body_force"), diag_);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
+    read_pfem(s);
     read_output(s);
     check_mass(s);
     return s;
@@ -97,7 +99,8 @@ class Loader {
     const std::string m = t.string("method");
     s.scene.method = pick<Method>(m, {{"fem", Method::fem}, {"pfem", Method::pfem}, {"es_pfem", Method::es_pfem},
                                       {"mpm", Method::mpm}, {"mpm_fem", Method::mpm_fem}});
-    if (s.scene.method != Method::fem) t.error("method", "method \"" + m + "\" is not implemented yet (available: fem)");
+    if (s.scene.method != Method::fem && s.scene.method != Method::pfem)
+      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, pfem)");
     s.scene.dimension = int(t.integer("dimension"));
     s.scene.units = t.string("units");
     s.scene.description = t.string("description");
@@ -242,8 +245,12 @@ class Loader {
     if (p.name.find_first_of(",\"\n") != std::string::npos) t.error("name", "a probe name may not hold commas, quotes or newlines");
     const std::string kind = t.string("kind");
     p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
-                                    {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump}});
+                                    {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
+                                    {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}});
     p.max = t.string("bound") == "max";
+    const std::string quantity = t.string("quantity");
+    p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
+                 {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated}});
     p.component = t.string("component") == "y" ? 1 : 0;
     auto needs = [&](const char* key) {
       if (t.present() && t.has("kind") && !t.has(key)) t.error("", std::string("missing key ") + key + " (needed by kind = \"" + kind + "\")");
@@ -278,7 +285,12 @@ class Loader {
       case ProbeKind::newton:
         unused("boundary"), unused("component"), unused("at"), unused("body");
         break;
+      case ProbeKind::remesh:
+        needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body");
+        if (s.scene.method != Method::pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\"");
+        break;
       case ProbeKind::extent:
+      case ProbeKind::volume:
       case ProbeKind::pressure_jump: {
         if (p.kind == ProbeKind::extent) needs("component");
         else unused("component");
@@ -296,7 +308,33 @@ class Loader {
       }
     }
     if (p.kind != ProbeKind::extent) unused("bound");
+    if (p.kind != ProbeKind::remesh) unused("quantity");
     s.probes.push_back(p);
+  }
+
+  void read_pfem(SceneSpec& s) {
+    const auto remesh = root_.table("remesh"), map = root_.table("map");
+    if (s.scene.method != Method::pfem) {
+      if (remesh.present()) root_.error("remesh", "[remesh] is used by method = \"pfem\" only");
+      if (map.present()) root_.error("map", "[map] is used by method = \"pfem\" only");
+      return;
+    }
+    s.pfem.alpha = remesh.real("alpha");
+    s.pfem.every = int(remesh.integer("every"));
+    if (const auto l = remesh.expression("lchar"); l && remesh.has("lchar")) {
+      char* end = nullptr;
+      const double v = std::strtod(l->text.c_str(), &end);
+      if (l->text == "local") {
+        s.pfem.local = true;
+      } else if (end && *end == '\0' && end != l->text.c_str() && v > 0.0) {
+        s.pfem.local = false, s.pfem.lchar = v;
+      } else {
+        remesh.error("lchar", "expected a length > 0 or \"local\", got \"" + l->text + "\"");
+      }
+    }
+    s.pfem.btm = map.string("scheme") == "btm";
+    s.pfem.iso = int(map.integer("iso"));
+    if (!s.pfem.btm && map.has("iso") && s.pfem.iso != 0) map.error("iso", "iso is used by scheme = \"btm\" only (CPM copies F as it is)");
   }
 
   void read_output(SceneSpec& s) {

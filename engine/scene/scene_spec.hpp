@@ -20,7 +20,8 @@ enum class Integrator { static_, euler_backward };
 enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic };
 enum class MeshGenerator { rectangle, cooks_membrane };
-enum class ProbeKind { reaction, point, newton, extent, pressure_jump };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh };
+enum class RemeshQuantity { area_change, changed, rejected, isolated };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
 struct ExpressionSpec {
@@ -107,7 +108,18 @@ struct ProbeSpec {
   Vec2 at = Vec2::Zero();     // point
   Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
   bool max = true;            // extent: largest (true) or smallest coordinate
+  RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh
   SourceRef where;
+};
+
+// PFEM remeshing and state transfer (seed 000 §3).
+struct PfemSpec {
+  double alpha = 1.2;
+  double lchar = 0.0;  // constant l_char when > 0
+  bool local = true;   // l_char^loc (eqs 17-18)
+  int every = 1;
+  bool btm = false;    // map scheme: false = CPM
+  int iso = 0;         // 0, 1, 2
 };
 
 struct OutputSpec {
@@ -126,6 +138,7 @@ struct SceneSpec {
   std::vector<BoundarySpec> boundaries;
   VectorExpression body_force;  // global, per unit mass
   std::vector<ProbeSpec> probes;
+  PfemSpec pfem;
   OutputSpec output;
 };
 

@@ -22,7 +22,7 @@ std::vector<KeySpec> build_schema() {
   // [scene]
   s.push_back(key("scene", K::table, "What the scene is and which method runs it.").require());
   s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
-  s.push_back(key("scene.method", K::choice, "Method (recipe) that runs the scene. Only fem is implemented so far.")
+  s.push_back(key("scene.method", K::choice, "Method (recipe) that runs the scene: fem (fixed mesh) or pfem (remeshing every step, seed 000 §3).")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
@@ -103,13 +103,30 @@ std::vector<KeySpec> build_schema() {
                   "reaction: sum over the boundary's prescribed dofs of the force the constraint exerts on the body "
                   "(f_int + M a - f_ext); point: displacement of the node nearest to `at`; newton: Newton iterations of the step; "
                   "extent: largest (bound = max) or smallest coordinate of a body's nodes along `component`; "
-                  "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation).")
-                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump"}).require());
+                  "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation); "
+                  "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh.")
+                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh"}).require());
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
   s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe.").one_of({"x", "y"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point probe."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
   s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));
+  s.push_back(key("probe[].quantity", K::choice,
+                  "Of a remesh probe: area_change (area after - area before, summed over bodies), changed (1 if the connectivity changed), "
+                  "rejected (triangles removed by the alpha test), isolated (particles in no triangle).")
+                  .one_of({"area_change", "changed", "rejected", "isolated"}));
+  // [remesh], [map]: pfem only
+  s.push_back(key("remesh", K::table, "PFEM remeshing (method = pfem): constrained Delaunay of the particles and alpha-shape test (seed 000 §3.1)."));
+  s.push_back(key("remesh.alpha", K::real, "alpha of the alpha-shape test (eq 16): a triangle with circumradius > alpha * l_char is removed.").by_default("1.2").above(0));
+  s.push_back(key("remesh.lchar", K::expression,
+                  "Characteristic length l_char of eq 16: a number, or \"local\" for l_char^loc of eqs 17-18 (mean neighbour distance "
+                  "on the previous mesh, averaged over the triangle's corners).").by_default("\"local\""));
+  s.push_back(key("remesh.every", K::integer, "Remesh before every this many steps.").by_default("1").at_least(1));
+  s.push_back(key("map", K::table, "PFEM state transfer between meshes (method = pfem; seed 000 §3.2)."));
+  s.push_back(key("map.scheme", K::choice, "cpm: copy from the closest old quadrature point; btm: interpolate in the background triangulation of the old points (eqs 19-21).")
+                  .one_of({"cpm", "btm"}).by_default("cpm"));
+  s.push_back(key("map.iso", K::integer, "BTM interpolation of F: 0 plain, 1 F_vol and F_iso separately, 2 log U and log R of the polar decomposition (eqs 22-23).")
+                  .by_default("0").at_least(0).at_most(2));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));
   s.push_back(key("output.directory", K::string, "Output directory (relative to the working directory); `loom run --out` replaces it.")

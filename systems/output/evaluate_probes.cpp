@@ -62,7 +62,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
 void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
                      const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
-                     std::vector<double>& values) {
+                     const RemeshStats& remesh, std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
     const ProbeSpec& p = plan.probes[k];
@@ -91,6 +91,23 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         values[k] = e;
         break;
       }
+      case ProbeKind::volume: {
+        double area = 0.0;
+        for (std::size_t b = 0; b < cells.size(); ++b)
+          for (Index c = 0; c < cells[b].size(); ++c)
+            if (cells[b].body[c] == p.body)
+              for (int q = 0; q < quad[b].per_cell; ++q) area += quad[b].weight_n[c * quad[b].per_cell + q];
+        values[k] = area;
+        break;
+      }
+      case ProbeKind::remesh:
+        switch (p.quantity) {
+          case RemeshQuantity::area_change: values[k] = remesh.area_change; break;
+          case RemeshQuantity::changed: values[k] = remesh.changed ? 1.0 : 0.0; break;
+          case RemeshQuantity::rejected: values[k] = remesh.rejected; break;
+          case RemeshQuantity::isolated: values[k] = remesh.isolated; break;
+        }
+        break;
       case ProbeKind::pressure_jump: {
         double sum = 0.0;
         for (const auto& [block, c1, c2] : plan.cell_pairs[k]) {

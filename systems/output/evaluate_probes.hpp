@@ -6,7 +6,9 @@
 //  extent:        largest or smallest current coordinate of the body's nodes along a component;
 //  pressure_jump: mean over the body's interior edges of |p_1 - p_2|, the cell pressures
 //                 p = -tr(sigma)/3 (averaged over a cell's points) on either side: a measure of pressure
-//                 oscillations (seed 000 Fig 9).
+//                 oscillations (seed 000 Fig 9);
+//  volume:        area of the body in the converged configuration (sum of the point weights dV_n);
+//  remesh:        a quantity of the step's remesh (pfem).
 #pragma once
 
 #include <array>
@@ -19,6 +21,7 @@
 #include "engine/store/nodes.hpp"
 #include "engine/store/quad_points.hpp"
 #include "systems/assemble/materials/material.hpp"
+#include "systems/remesh/remesh.hpp"
 
 namespace loom {
 
@@ -37,7 +40,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
 void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
                      const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
-                     std::vector<double>& values);
+                     const RemeshStats& remesh, std::vector<double>& values);
 
 // Mean pressure -tr(sigma)/3 of a cell over its points, from the committed deformation (F_n).
 double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, Index cell);

@@ -1,0 +1,241 @@
+#include "engine/methods/pfem_remesh.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/colouring.hpp"
+#include "engine/methods/build_boundary_conditions.hpp"
+#include "systems/assemble/compute_geometry.hpp"
+#include "systems/assemble/elements/tri3.hpp"
+#include "systems/assemble/elements/tri6.hpp"
+#include "systems/update/lumped_mass.hpp"
+
+namespace loom {
+namespace {
+
+using Triple = std::array<Index, 3>;
+
+Triple sorted(Index a, Index b, Index c) {
+  Triple t{a, b, c};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+double corner_area(const Nodes<2>& nodes, const std::vector<Index>& triangles) {
+  double area = 0.0;
+  for (std::size_t t = 0; t < triangles.size(); t += 3) {
+    const Vec2 a = nodes.position_n(triangles[t]), b = nodes.position_n(triangles[t + 1]), c = nodes.position_n(triangles[t + 2]);
+    area += 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());
+  }
+  return area;
+}
+
+// Position in B_n of point q of cell c (3-point rules: point q sits nearest corner q).
+Vec2 quad_point_position(const Nodes<2>& nodes, const Cells& cells, int per_cell, Index c, int q) {
+  const Index* n = cells.cell_nodes(c);
+  if (per_cell == 1) return (nodes.position_n(n[0]) + nodes.position_n(n[1]) + nodes.position_n(n[2])) / 3.0;
+  const double* l = kTri3Rule3[q];
+  if (cells.stride == 3) return l[0] * nodes.position_n(n[0]) + l[1] * nodes.position_n(n[1]) + l[2] * nodes.position_n(n[2]);
+  const Tri6Values N = tri6_values(l[0], l[1], l[2]);
+  Vec2 x = Vec2::Zero();
+  for (int a = 0; a < 6; ++a) x += N[a] * nodes.position_n(n[a]);
+  return x;
+}
+
+// Every nodal column of node `to` set to the mean of nodes a and b (a re-created mid-node).
+void set_midpoint(Nodes<2>& nodes, Index to, Index a, Index b) {
+  nodes.for_each_column([&](const char*, auto& col) {
+    if (col.used()) col[to] = 0.5 * (col[a] + col[b]);
+  });
+}
+
+}  // namespace
+
+PfemTopology initial_topology(const FemModel& m) {
+  PfemTopology topo;
+  const std::size_t n_bodies = m.scene.bodies.size();
+  topo.points_of_body.resize(n_bodies);
+  topo.triangles.resize(n_bodies);
+  topo.boundary.resize(n_bodies);
+  // Corners are the nodes used as a cell's first three nodes; build_mesh numbers them first.
+  std::vector<char> corner(std::size_t(m.nodes.size()), 0);
+  for (const Cells& cb : m.cells)
+    for (Index c = 0; c < cb.size(); ++c) {
+      for (int a = 0; a < 3; ++a) corner[std::size_t(cb.node(c, a))] = 1;
+      for (int a = 0; a < 3; ++a) topo.triangles[std::size_t(cb.body[c])].push_back(cb.node(c, a));
+    }
+  topo.n_points = Index(std::count(corner.begin(), corner.end(), 1));
+  for (Index i = 0; i < topo.n_points; ++i) {
+    LOOM_ASSERT(corner[std::size_t(i)], "corner nodes must come first");
+    topo.points_of_body[std::size_t(m.node_body[std::size_t(i)])].push_back(i);
+  }
+  for (std::size_t b = 0; b < n_bodies; ++b) topo.boundary[b] = boundary_of(topo.triangles[b]);
+  return topo;
+}
+
+RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemModel& m, Timers& timers) {
+  RemeshReport report;
+  ScopedTimer triangulate(timers, "remesh/triangulate");
+  const std::size_t n_bodies = m.scene.bodies.size();
+
+  // 1. New corner triangles of every body (local to the body's particles, then global).
+  std::vector<std::vector<Index>> triangles(n_bodies);
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    const auto& pts = topo.points_of_body[b];
+    std::map<Index, Index> local;
+    std::vector<Vec2> x(pts.size());
+    for (std::size_t k = 0; k < pts.size(); ++k) local[pts[k]] = Index(k), x[k] = m.nodes.position_n(pts[k]);
+    auto to_local = [&](Index g) { return local.at(g); };
+    std::vector<Index> old_local;
+    for (Index g : topo.triangles[b]) old_local.push_back(to_local(g));
+    std::vector<Edge> constraints;
+    for (const Edge& e : topo.boundary[b]) constraints.push_back({to_local(e[0]), to_local(e[1])});
+    std::vector<double> d_avg;
+    if (settings.remesh.local) average_neighbour_distance(x, old_local, d_avg);  // eq 17 on the previous mesh
+    RemeshResult r;
+    remesh_points(x, constraints, settings.remesh, d_avg, r);
+    for (Index v : r.triangles) triangles[b].push_back(pts[std::size_t(v)]);
+    report.rejected += r.rejected, report.isolated += r.isolated, report.triangles += r.triangles.size() / 3;
+    report.area_before += corner_area(m.nodes, topo.triangles[b]);
+    report.area_after += r.area;
+  }
+
+  // 2. Did the connectivity change?
+  std::map<Triple, std::pair<Index, Index>> old_cell;  // corner set -> (block, cell)
+  for (std::size_t k = 0; k < m.cells.size(); ++k)
+    for (Index c = 0; c < m.cells[k].size(); ++c) {
+      const Index* n = m.cells[k].cell_nodes(c);
+      old_cell[sorted(n[0], n[1], n[2])] = {Index(k), c};
+    }
+  report.changed = false;
+  for (std::size_t b = 0; b < n_bodies && !report.changed; ++b) {
+    if (triangles[b].size() != topo.triangles[b].size()) report.changed = true;
+    for (std::size_t t = 0; t < triangles[b].size() && !report.changed; t += 3)
+      if (!old_cell.count(sorted(triangles[b][t], triangles[b][t + 1], triangles[b][t + 2]))) report.changed = true;
+  }
+  triangulate.stop();
+  bool quadratic = false;
+  for (const Cells& cb : m.cells) quadratic = quadratic || cb.type == CellType::tri6;
+  if (!report.changed && !quadratic) return report;  // nothing to transfer, nothing to rebuild
+  ScopedTimer rebuild(timers, "remesh/rebuild_cells");
+
+  // 3. Old quadrature points: positions in B_n and histories.
+  std::vector<Vec2> old_x;
+  std::vector<Mat3> old_F;
+  std::map<std::pair<Index, Index>, Index> first_point;  // (block, cell) -> index of its first point in old_x
+  for (std::size_t k = 0; k < m.cells.size(); ++k) {
+    const QuadPoints<2>& q = m.quad[k];
+    for (Index c = 0; c < m.cells[k].size(); ++c) {
+      first_point[{Index(k), c}] = Index(old_x.size());
+      for (int p = 0; p < q.per_cell; ++p) {
+        old_x.push_back(quad_point_position(m.nodes, m.cells[k], q.per_cell, c, p));
+        old_F.push_back(q.F_n[c * q.per_cell + p]);
+      }
+    }
+  }
+  std::vector<Cells> old_cells;
+  if (!report.changed) {
+    for (std::size_t b = 0; b < n_bodies; ++b) triangles[b] = topo.triangles[b];  // keep the cell order
+  }
+  old_cells.swap(m.cells);
+
+  // 4. New cells; mid-nodes dropped and re-created at straight midpoints with interpolated data.
+  m.nodes.resize(topo.n_points);
+  m.node_body.resize(std::size_t(topo.n_points));
+  std::map<std::pair<Index, Index>, Index> mid_of;
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    const Formulation element = m.scene.bodies[b].element;
+    const CellType type = cell_type_of(element);
+    Cells* block = nullptr;
+    for (auto& c : m.cells)
+      if (c.formulation == element) block = &c;
+    if (!block) {
+      m.cells.emplace_back(type, element);
+      block = &m.cells.back();
+    }
+    for (std::size_t t = 0; t < triangles[b].size(); t += 3) {
+      const Index v[3] = {triangles[b][t], triangles[b][t + 1], triangles[b][t + 2]};
+      block->nodes.values().insert(block->nodes.values().end(), v, v + 3);
+      if (type == CellType::tri6)
+        for (int s = 0; s < 3; ++s) {
+          const Index a = v[s], c = v[(s + 1) % 3];
+          const auto key = std::make_pair(std::min(a, c), std::max(a, c));
+          auto [it, inserted] = mid_of.emplace(key, m.nodes.size());
+          if (inserted) {
+            m.nodes.resize(m.nodes.size() + 1);
+            set_midpoint(m.nodes, it->second, a, c);
+            m.node_body.push_back(Index(b));
+          }
+          block->nodes.values().push_back(it->second);
+        }
+      block->body.values().push_back(Index(b));
+    }
+  }
+  for (auto& c : m.cells) colour_cells(c, m.nodes.size());
+  allocate_quad_points(m.cells, m.quad);
+  LOOM_CHECK(compute_geometry(m.nodes, m.cells, m.quad) == 0, RunError, "remesh: the new mesh has inverted cells");
+
+  rebuild.stop();
+  ScopedTimer transfer(timers, "remesh/map");
+  // 5. Transfer of the history: cells that kept their corners copy point by point (the points of 3-point
+  //    rules follow their corner), the others are mapped (CPM / BTM).
+  std::vector<Vec2> new_x;
+  std::vector<Index> copy_from;
+  for (std::size_t k = 0; k < m.cells.size(); ++k) {
+    const Cells& cb = m.cells[k];
+    const int per_cell = m.quad[k].per_cell;
+    for (Index c = 0; c < cb.size(); ++c) {
+      const Index* n = cb.cell_nodes(c);
+      auto it = old_cell.find(sorted(n[0], n[1], n[2]));
+      for (int p = 0; p < per_cell; ++p) {
+        new_x.push_back(quad_point_position(m.nodes, cb, per_cell, c, p));
+        Index from = kNoIndex;
+        if (it != old_cell.end() && old_cells[std::size_t(it->second.first)].formulation == cb.formulation) {
+          const Cells& oc = old_cells[std::size_t(it->second.first)];
+          int q = 0;  // the old point that sits at the same corner
+          if (per_cell == 3)
+            while (oc.node(it->second.second, q) != n[p]) ++q;
+          from = first_point[it->second] + q;
+        }
+        copy_from.push_back(from);
+      }
+    }
+  }
+  std::vector<Mat3> new_F;
+  map_state(old_x, old_F, new_x, copy_from, settings.map, new_F, report.map);
+  std::size_t next = 0;
+  for (auto& q : m.quad)
+    for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
+  if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
+
+  transfer.stop();
+  ScopedTimer numbering(timers, "remesh/rebuild_system");
+  // 6. Boundary conditions, dofs, sparsity and scatter on the new mesh (the symbolic factorization is
+  //    redone because the pattern version changes).
+  const int per_node = m.system.dofs.per_node;
+  m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, per_node);
+  std::vector<DofKind> kinds = dof_kinds(m.bc, m.cells, m.nodes.size(), per_node);
+  std::vector<char> in_cell(std::size_t(m.nodes.size()), 0);
+  for (const Cells& cb : m.cells)
+    for (Index v : cb.nodes) in_cell[std::size_t(v)] = 1;
+  for (Index i = 0; i < m.nodes.size(); ++i)
+    if (!in_cell[std::size_t(i)])  // an isolated particle carries no equation
+      for (int d = 0; d < per_node; ++d) kinds[std::size_t(i * per_node + d)] = DofKind::absent;
+  if (report.changed || m.system.dofs.n_dofs() != Index(kinds.size())) {
+    m.system.dofs.build(per_node, std::move(kinds));
+    std::vector<const Cells*> blocks;
+    for (const auto& c : m.cells) blocks.push_back(&c);
+    build_pattern(blocks, m.system.dofs, m.system.pattern);
+  }
+  m.system.scatter.resize(m.cells.size());
+  for (std::size_t k = 0; k < m.cells.size(); ++k) build_scatter(m.cells[k], m.system.dofs, m.system.pattern, m.system.scatter[k]);
+  m.system.resize_vectors();
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    topo.triangles[b] = triangles[b];
+    topo.boundary[b] = boundary_of(triangles[b]);
+  }
+  return report;
+}
+
+}  // namespace loom

@@ -1,0 +1,102 @@
+#include "systems/remesh/remesh.hpp"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_set>
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/boundary_edges.hpp"
+
+namespace loom {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
+using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+// Exact_predicates_tag: constraints that cross (a polygon folded by a large step) are split, not rejected.
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+
+double circumradius(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
+  const double twice_area = std::abs((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());
+  return twice_area > 0.0 ? ab * bc * ca / (2.0 * twice_area) : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& constraints,
+                   const RemeshSettings& settings, const std::vector<double>& average_distance, RemeshResult& out) {
+  const Index n = Index(positions.size());
+  std::vector<std::pair<Kernel::Point_2, Index>> points;
+  points.reserve(positions.size());
+  for (Index i = 0; i < n; ++i) points.emplace_back(Kernel::Point_2(positions[std::size_t(i)].x(), positions[std::size_t(i)].y()), i);
+  Cdt cdt;
+  cdt.insert(points.begin(), points.end());  // spatially sorted insertion
+  LOOM_CHECK(Index(cdt.number_of_vertices()) == n, RunError,
+             "remesh: " << n - Index(cdt.number_of_vertices()) << " points coincide with others (the body has collapsed)");
+  std::vector<Cdt::Vertex_handle> vertex(static_cast<std::size_t>(n));
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) vertex[std::size_t(v->info())] = v;
+  for (const Edge& e : constraints) cdt.insert_constraint(vertex[std::size_t(e[0])], vertex[std::size_t(e[1])]);
+  // Constraints that cross create vertices without info: they would be points loom does not know.
+  LOOM_CHECK(Index(cdt.number_of_vertices()) == n, RunError,
+             "remesh: the previous boundary polygon intersects itself (" << Index(cdt.number_of_vertices()) - n << " crossings)");
+
+  out.triangles.clear();
+  out.rejected = 0;
+  out.area = 0.0;
+  std::vector<char> used(std::size_t(n), 0);
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    const Index t[3] = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};  // CGAL: counter-clockwise
+    const Vec2 &a = positions[std::size_t(t[0])], &b = positions[std::size_t(t[1])], &c = positions[std::size_t(t[2])];
+    double l_char = settings.l_char;
+    if (settings.local)
+      l_char = (average_distance[std::size_t(t[0])] + average_distance[std::size_t(t[1])] + average_distance[std::size_t(t[2])]) / 3.0;
+    if (settings.alpha * l_char < circumradius(a, b, c)) {  // eq 16: reject T
+      ++out.rejected;
+      continue;
+    }
+    out.triangles.insert(out.triangles.end(), {t[0], t[1], t[2]});
+    for (Index k : t) used[std::size_t(k)] = 1;
+    out.area += 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());
+  }
+  out.isolated = Index(std::count(used.begin(), used.end(), 0));
+  out.boundary = boundary_of(out.triangles);
+}
+
+void average_neighbour_distance(const std::vector<Vec2>& positions, const std::vector<Index>& triangles,
+                                std::vector<double>& average_distance) {
+  const std::size_t n = positions.size();
+  std::vector<std::uint64_t> edges;
+  edges.reserve(triangles.size());
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
+    for (int s = 0; s < 3; ++s) {
+      const auto a = std::uint64_t(triangles[t + std::size_t(s)]), b = std::uint64_t(triangles[t + std::size_t((s + 1) % 3)]);
+      edges.push_back((std::min(a, b) << 32) | std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> sum(n, 0.0);
+  std::vector<int> count(n, 0);
+  for (std::uint64_t e : edges) {
+    const std::size_t a = e >> 32, b = e & 0xffffffffu;
+    const double d = (positions[a] - positions[b]).norm();
+    sum[a] += d, sum[b] += d, ++count[a], ++count[b];
+  }
+  average_distance.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (count[i] > 0) average_distance[i] = sum[i] / count[i];
+}
+
+std::vector<Edge> boundary_of(const std::vector<Index>& triangles) {
+  std::vector<Edge> out;
+  for (const auto& e : boundary_edges(triangles, 3)) out.push_back({e.a, e.b});
+  return out;
+}
+
+}  // namespace loom
