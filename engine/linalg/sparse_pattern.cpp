@@ -57,6 +57,14 @@ void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, 
   pattern.version = next_version++;
 }
 
+Index find_slot(const SparsePattern& pattern, Index row, Index col) {
+  const SparseMatrix& A = pattern.matrix;
+  const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[col];
+  const int* end = A.innerIndexPtr() + A.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, row);
+  return it != end && *it == row ? Index(it - A.innerIndexPtr()) : kNoIndex;
+}
+
 void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter) {
   const int pn = dofs.per_node;
   const int nd = cells.stride * pn;
@@ -64,9 +72,23 @@ void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& 
   scatter.dofs_per_cell = nd;
   scatter.slot.assign(std::size_t(cells.size()) * std::size_t(nd) * std::size_t(nd), kNoIndex);
   scatter.dof.assign(std::size_t(cells.size()) * std::size_t(nd), kNoIndex);
+  scatter.tie_offset.assign(std::size_t(cells.size()) + 1, 0);
+  scatter.local_ties.clear();
   for (Index c = 0; c < cells.size(); ++c) {
     const Index* nodes = cells.cell_nodes(c);
     for (int a = 0; a < nd; ++a) scatter.dof[std::size_t(c) * nd + a] = dofs.dof(nodes[a / pn], a % pn);
+    if (!dofs.ties.empty())
+      for (int a = 0; a < nd; ++a) {
+        const Tie* tie = dofs.tie_of(scatter.cell_dof(c, a));
+        if (!tie) continue;
+        std::array<int, 3> local{a, -1, -1};
+        for (int m = 0; m < 2; ++m)
+          for (int b = 0; b < nd; ++b)
+            if (scatter.cell_dof(c, b) == tie->master[m]) local[std::size_t(m) + 1] = b;
+        LOOM_CHECK(local[1] >= 0 && local[2] >= 0, RunError, "a tied dof's masters are not in its cell " << c);
+        scatter.local_ties.push_back(local);
+      }
+    scatter.tie_offset[std::size_t(c) + 1] = Index(scatter.local_ties.size());
     for (int b = 0; b < nd; ++b) {
       const Index col = dofs.equation[std::size_t(scatter.cell_dof(c, b))];
       if (col == kNoIndex) continue;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,10 @@ struct CellScatter {
   int dofs_per_cell = 0;
   std::vector<Index> slot;      // n_cells * dofs_per_cell^2, row-major (a, b): value index or kNoIndex
   std::vector<Index> dof;       // n_cells * dofs_per_cell: global dof (free or not)
+  // Tied dofs of each cell with their masters, as local indices (tied, master, master): the ties of cell c
+  // are local_ties[tie_offset[c] .. tie_offset[c + 1]). Masters of a tie lie in the same cell.
+  std::vector<Index> tie_offset;
+  std::vector<std::array<int, 3>> local_ties;
 
   Index matrix_slot(Index cell, int a, int b) const {
     return slot[(std::size_t(cell) * dofs_per_cell + std::size_t(a)) * dofs_per_cell + std::size_t(b)];
@@ -36,6 +41,9 @@ struct SparsePattern {
 
 // Builds the pattern coupling every pair of dofs of every cell in `blocks`, numbered by `dofs`.
 void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, SparsePattern& pattern);
+// Value index of entry (row, col) of the pattern, or kNoIndex.
+Index find_slot(const SparsePattern& pattern, Index row, Index col);
+
 // Builds the scatter of one block into an already built pattern.
 void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter);
 

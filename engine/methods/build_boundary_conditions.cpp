@@ -1,6 +1,7 @@
 #include "engine/methods/build_boundary_conditions.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <sstream>
 
@@ -30,7 +31,8 @@ std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, co
 
 BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
-                                                int dofs_per_node) {
+                                                int dofs_per_node, bool tie_mid_nodes,
+                                                const std::vector<TractionEdge<2>>* frozen_tractions) {
   BoundaryConditions<2> bc;
   bc.per_node = dofs_per_node;
   const Index n_dofs = nodes.size() * dofs_per_node;
@@ -51,17 +53,32 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     for (const auto& e : boundary_edges(cb.nodes.values(), cb.stride))
       edges.push_back({e.a, e.b, cb.stride == 6 ? cb.node(e.cell, 3 + e.side) : kNoIndex});
 
+  auto inside_box = [&](const BoundarySpec& spec, Index i) {
+    const auto body = std::size_t(spec.body);
+    const double tol = 1e-9 * std::max(1.0, (hi[body] - lo[body]).norm());
+    const Vec2& X = nodes.X[i];
+    return node_body[std::size_t(i)] == spec.body && X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol &&
+           X.y() >= spec.box_min.y() - tol && X.y() <= spec.box_max.y() + tol;
+  };
+
+  // Seed 000 eq 24: in PFEM, the mid-nodes of boundary edges that carry a condition are tied to the
+  // midpoint of their corners (both components), instead of being prescribed or loaded on their own.
+  std::map<Index, std::array<Index, 2>> tied;  // mid-node -> corners
+  if (tie_mid_nodes)
+    for (const BoundarySpec& spec : scene.boundaries) {
+      if (!spec.has_traction && !spec.displacement.x && !spec.displacement.y) continue;
+      for (const Edge& e : edges)
+        if (e.mid != kNoIndex && inside_box(spec, e.a) && inside_box(spec, e.b)) tied[e.mid] = {e.a, e.b};
+    }
+  for (const auto& [mid, corner] : tied)
+    for (int d = 0; d < 2; ++d) bc.ties.push_back({mid * dofs_per_node + d, {corner[0] * dofs_per_node + d, corner[1] * dofs_per_node + d}});
+
   std::map<Index, std::size_t> prescribed_at;  // dof -> entry of bc.prescribed
   std::vector<Index> prescriber;               // boundary that created each entry
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
     const BoundarySpec& spec = scene.boundaries[k];
     const auto body = std::size_t(spec.body);
-    const double tol = 1e-9 * std::max(1.0, (hi[body] - lo[body]).norm());
-    auto inside = [&](Index i) {
-      const Vec2& X = nodes.X[i];
-      return node_body[std::size_t(i)] == spec.body && X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol &&
-             X.y() >= spec.box_min.y() - tol && X.y() <= spec.box_max.y() + tol;
-    };
+    auto inside = [&](Index i) { return inside_box(spec, i); };
     std::vector<Index> selected;
     for (Index i = 0; i < nodes.size(); ++i)
       if (inside(i)) selected.push_back(i);
@@ -78,6 +95,7 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
       if (!*comps[d]) continue;
       const Index expr = add_expression(bc, **comps[d]);
       for (Index i : selected) {
+        if (tied.count(i)) continue;  // follows its corners
         const Index dof = i * dofs_per_node + d;
         auto it = prescribed_at.find(dof);
         if (it == prescribed_at.end()) {
@@ -99,12 +117,14 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     }
 
     if (spec.has_traction) {
+      // Compiled in every build, so that expression indices (kept by frozen traction edges) stay valid.
       std::array<Index, 2> expr{kNoIndex, kNoIndex};
       if (spec.traction.x) expr[0] = add_expression(bc, *spec.traction.x);
       if (spec.traction.y) expr[1] = add_expression(bc, *spec.traction.y);
+      if (frozen_tractions) continue;
       std::size_t n_edges = 0;
       for (const auto& e : edges)
-        if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, e.mid, expr}), ++n_edges;
+        if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, tied.count(e.mid) ? kNoIndex : e.mid, expr}), ++n_edges;
       LOOM_CHECK(n_edges > 0, InputError,
                  spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary edges with both "
                                    << "end nodes in the region, and this region holds none");
@@ -113,6 +133,13 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     }
   }
 
+  if (frozen_tractions) {
+    bc.traction_edges = *frozen_tractions;
+    bc.has_loads = !bc.traction_edges.empty();
+    for (const auto& e : bc.traction_edges)
+      for (Index x : e.expression)
+        if (x != kNoIndex) bc.loads_depend_on_time |= bc.expressions[std::size_t(x)].depends_on_time();
+  }
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     std::array<Index, 2> expr{kNoIndex, kNoIndex};
     const auto x = combine(scene.body_force.x, scene.bodies[b].body_force.x);
@@ -138,6 +165,7 @@ std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vecto
         for (Index k = 0; k < cb.nodes.size(); ++k) kinds[std::size_t(3 * cb.nodes[k] + 2)] = DofKind::free;
   }
   for (const auto& p : bc.prescribed) kinds[std::size_t(p.dof)] = DofKind::prescribed;
+  for (const auto& t : bc.ties) kinds[std::size_t(t.dof)] = DofKind::tied;
   return kinds;
 }
 

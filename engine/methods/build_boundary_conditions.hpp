@@ -14,12 +14,18 @@
 
 namespace loom {
 
-// dofs_per_node: layout of the run's DofMap (displacement components first).
+// dofs_per_node: layout of the run's DofMap (displacement components first). tie_mid_nodes (PFEM): the
+// mid-nodes of boundary edges with a condition are tied to their corners (seed 000 eq 24).
+// frozen_tractions (PFEM): the traction edges to use instead of searching the current boundary. A dead
+// load lives on the reference surface (eq 8), whatever the remesh does to the current boundary (alpha
+// shapes may cover a loaded edge), so PFEM computes its edges once, on the initial mesh.
 BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
-                                                int dofs_per_node);
+                                                int dofs_per_node, bool tie_mid_nodes = false,
+                                                const std::vector<TractionEdge<2>>* frozen_tractions = nullptr);
 
-// Dof kinds of the run: prescribed where a boundary prescribes a displacement component; with three
+// Dof kinds of the run: prescribed where a boundary prescribes a displacement component, tied for the
+// ties of `bc`; with three
 // dofs per node the third (phi) is free at nodes of mixed u-phi cells and absent elsewhere.
 std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node);
 

@@ -54,8 +54,8 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
   const int per_node = mixed ? 3 : 2;  // u_x, u_y (, phi)
-  bc = build_boundary_conditions(scene, nodes, cells, node_body, per_node);
-  system.dofs.build(per_node, dof_kinds(bc, cells, nodes.size(), per_node));
+  bc = build_boundary_conditions(scene, nodes, cells, node_body, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
+  system.dofs.build(per_node, dof_kinds(bc, cells, nodes.size(), per_node), bc.ties);
   std::vector<const Cells*> blocks;
   for (const auto& c : cells) blocks.push_back(&c);
   build_pattern(blocks, system.dofs, system.pattern);

@@ -71,6 +71,10 @@ PfemTopology initial_topology(const FemModel& m) {
     topo.points_of_body[std::size_t(m.node_body[std::size_t(i)])].push_back(i);
   }
   for (std::size_t b = 0; b < n_bodies; ++b) topo.boundary[b] = boundary_of(topo.triangles[b]);
+  // Loads on the particles: linear edge functions, since mid-nodes do not persist (a quadratic edge's
+  // mid-node load would vanish with it).
+  topo.tractions = m.bc.traction_edges;
+  for (auto& e : topo.tractions) e.mid = kNoIndex;
   return topo;
 }
 
@@ -214,7 +218,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   // 6. Boundary conditions, dofs, sparsity and scatter on the new mesh (the symbolic factorization is
   //    redone because the pattern version changes).
   const int per_node = m.system.dofs.per_node;
-  m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, per_node);
+  m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, per_node, /*tie_mid_nodes=*/true, &topo.tractions);
   std::vector<DofKind> kinds = dof_kinds(m.bc, m.cells, m.nodes.size(), per_node);
   std::vector<char> in_cell(std::size_t(m.nodes.size()), 0);
   for (const Cells& cb : m.cells)
@@ -222,8 +226,8 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   for (Index i = 0; i < m.nodes.size(); ++i)
     if (!in_cell[std::size_t(i)])  // an isolated particle carries no equation
       for (int d = 0; d < per_node; ++d) kinds[std::size_t(i * per_node + d)] = DofKind::absent;
-  if (report.changed || m.system.dofs.n_dofs() != Index(kinds.size())) {
-    m.system.dofs.build(per_node, std::move(kinds));
+  if (report.changed || m.system.dofs.n_dofs() != Index(kinds.size()) || m.system.dofs.kind != kinds) {
+    m.system.dofs.build(per_node, std::move(kinds), m.bc.ties);
     std::vector<const Cells*> blocks;
     for (const auto& c : m.cells) blocks.push_back(&c);
     build_pattern(blocks, m.system.dofs, m.system.pattern);

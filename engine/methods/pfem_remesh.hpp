@@ -30,6 +30,7 @@ struct PfemTopology {
   std::vector<std::vector<Index>> points_of_body;  // global node indices of each body's particles
   std::vector<std::vector<Index>> triangles;       // per body: corner connectivity (global indices)
   std::vector<std::vector<Edge>> boundary;         // per body: boundary polygon (global indices)
+  std::vector<TractionEdge<2>> tractions;          // loaded edges of the initial mesh, on corners (dead loads)
 };
 
 struct RemeshReport {

@@ -10,9 +10,19 @@
 #include <vector>
 
 #include "engine/core/types.hpp"
+#include "engine/linalg/dof_map.hpp"
 #include "engine/scene/expression.hpp"
 
 namespace loom {
+
+// A boundary edge carrying a traction: corners a, b (counter-clockwise along the outline), the mid-node of
+// a quadratic edge or kNoIndex, the expression of each component (kNoIndex: zero).
+template <int D>
+struct TractionEdge {
+  Index a, b;
+  Index mid;
+  std::array<Index, D> expression;
+};
 
 template <int D>
 struct BoundaryConditions {
@@ -26,14 +36,11 @@ struct BoundaryConditions {
   };
   std::vector<Prescribed> prescribed;
 
-  struct TractionEdge {
-    Index a, b;  // corner nodes, counter-clockwise along the outline
-    Index mid;   // mid-node of a quadratic edge, or kNoIndex
-    std::array<Index, D> expression;  // per component; kNoIndex: zero
-  };
+  using TractionEdge = loom::TractionEdge<D>;
   std::vector<TractionEdge> traction_edges;
 
   std::vector<std::array<Index, D>> body_force;  // per body, per component; kNoIndex: zero
+  std::vector<Tie> ties;                           // dofs tied to the mean of two others (PFEM TRI6, eq 24)
 
   std::vector<std::string> boundary_names;              // the scene's [[boundary]] names, in order
   std::vector<std::vector<Index>> boundary_nodes;       // nodes selected by each boundary's region

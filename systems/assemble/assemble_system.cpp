@@ -62,9 +62,13 @@ class CellScatterer {
 
   CellScatterer(const LocalMap<NE>& map, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& nodes,
                 LinearSystem& system)
-      : map_(map), sc_(sc), bc_(bc), nodes_(nodes), system_(system) {}
+      : map_(map), sc_(sc), bc_(bc), nodes_(nodes), system_(system) {
+    std::fill(std::begin(from_scatter_), std::end(from_scatter_), -1);
+    for (int k = 0; k < NE; ++k) from_scatter_[map_.to_scatter[k]] = k;
+  }
 
-  // Gap (target - value) of the cell's prescribed dofs; returns true if any is non-zero.
+  // Gap (target - value) of the cell's prescribed dofs, and of its tied dofs (the mean of their masters'
+  // gaps); returns true if any is non-zero.
   bool gap(Index c, Vector& g) const {
     g.setZero();
     bool lagging = false;
@@ -75,11 +79,35 @@ class CellScatterer {
       g[k] = bc_.target[dof] - dof_value(nodes_, dof, pn);
       lagging = lagging || g[k] != 0.0;
     }
+    if (lagging)
+      for (Index t = sc_.tie_offset.empty() ? 0 : sc_.tie_offset[std::size_t(c)]; !sc_.tie_offset.empty() && t < sc_.tie_offset[std::size_t(c) + 1]; ++t) {
+        const auto& tie = sc_.local_ties[std::size_t(t)];
+        g[from_scatter_[tie[0]]] = 0.5 * (g[from_scatter_[tie[1]]] + g[from_scatter_[tie[2]]]);
+      }
     return lagging;
   }
 
-  void scatter(Index c, const Vector& r, const Matrix* K) const {
-    for (int a = 0; a < NE; ++a) system_.residual_full[sc_.cell_dof(c, map_.to_scatter[a])] += r[a];
+  void scatter(Index c, const Vector& r_in, const Matrix* K_in) const {
+    const Vector* r = &r_in;
+    const Matrix* K = K_in;
+    Vector r_tied;
+    Matrix K_tied;
+    if (!sc_.tie_offset.empty() && sc_.tie_offset[std::size_t(c)] != sc_.tie_offset[std::size_t(c) + 1]) {
+      // Eliminate the ties (u_t = (u_m1 + u_m2) / 2): r <- T^T r, K <- T^T K T.
+      r_tied = r_in;
+      if (K_in) K_tied = *K_in;
+      for (Index t = sc_.tie_offset[std::size_t(c)]; t < sc_.tie_offset[std::size_t(c) + 1]; ++t) {
+        const auto& tie = sc_.local_ties[std::size_t(t)];
+        const int a = from_scatter_[tie[0]], m1 = from_scatter_[tie[1]], m2 = from_scatter_[tie[2]];
+        r_tied[m1] += 0.5 * r_tied[a], r_tied[m2] += 0.5 * r_tied[a], r_tied[a] = 0.0;
+        if (!K_in) continue;
+        K_tied.row(m1) += 0.5 * K_tied.row(a), K_tied.row(m2) += 0.5 * K_tied.row(a), K_tied.row(a).setZero();
+        K_tied.col(m1) += 0.5 * K_tied.col(a), K_tied.col(m2) += 0.5 * K_tied.col(a), K_tied.col(a).setZero();
+      }
+      r = &r_tied;
+      if (K_in) K = &K_tied;
+    }
+    for (int a = 0; a < NE; ++a) system_.residual_full[sc_.cell_dof(c, map_.to_scatter[a])] += (*r)[a];
     if (!K) return;
     double* values = system_.pattern.matrix.valuePtr();
     for (int a = 0; a < NE; ++a)
@@ -90,6 +118,7 @@ class CellScatterer {
   }
 
  private:
+  int from_scatter_[18];  // scatter-local index (at most 6 nodes x 3 dofs) -> element-local index (-1: not the element's)
   const LocalMap<NE>& map_;
   const CellScatter& sc_;
   const BoundaryConditions<2>& bc_;
@@ -257,6 +286,21 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
       system.residual_full[dof] += r;
     }
   });
+  // Nodal terms of tied dofs go to their masters (T^T r, T^T M T): serial, ties are few.
+  for (const Tie& tie : dofs.ties) {
+    double& r_tied = system.residual_full[tie.dof];
+    for (Index m : tie.master) system.residual_full[m] += 0.5 * r_tied;
+    r_tied = 0.0;
+    if (lumped && tangent) {
+      const Index node = tie.dof / dofs.per_node;
+      const double m4 = 0.25 * nodes.lumped_mass[node] * inertia.inv_dt2;
+      for (Index a : tie.master)
+        for (Index b : tie.master) {
+          const Index ea = dofs.equation[std::size_t(a)], eb = dofs.equation[std::size_t(b)];
+          if (ea != kNoIndex && eb != kNoIndex) values[find_slot(system.pattern, ea, eb)] += m4;
+        }
+    }
+  }
   for_each_index(dofs.n_dofs(), [&](Index dof) {
     const Index eq = dofs.equation[std::size_t(dof)];
     if (eq != kNoIndex) system.residual[eq] = system.residual_full[dof];

@@ -26,9 +26,12 @@ LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditi
       case DofKind::prescribed:  // only displacement components are ever prescribed
         system.increment_full[dof] = bc.target[dof] - nodes.u[dof / dofs.per_node][dof % dofs.per_node];
         break;
+      case DofKind::tied:  // set below from the masters
       case DofKind::absent: system.increment_full[dof] = 0.0; break;
     }
   });
+  for (const Tie& tie : dofs.ties)
+    system.increment_full[tie.dof] = 0.5 * (system.increment_full[tie.master[0]] + system.increment_full[tie.master[1]]);
   return LinearSolveStatus::ok;
 }
 
