@@ -7,18 +7,19 @@
 //
 // What the paper shows, and what we observe (the curves: docs/constrained_block/, made by
 // tools/constrained_block_study.py; F = -reaction at u_pre = 0.2 mm):
-//  - Reference: about 6.5 N ([3, 21] of the seed), met by p1p1_uphi with alpha_s = K/10: 6.504 N.
-//  - Fig 8, alpha_s = 1, 10, 100, 1e3, 1e4, 1e5 MPa: 7.750, 7.703, 7.513, 7.131, 6.504, 5.699 N. The paper
-//    says 1 ... 100 "quasi coincide" and 1e3 ... 1e5 soften increasingly. Ours: every increase of alpha_s
-//    lowers the force at every step; the decrement per decade grows, 0.048, 0.19, 0.38, 0.63, 0.81 N; the
-//    curves 1, 10, 100 stay within 3.1 % of the alpha_s = 1 curve over the whole path (10: 0.6 %), while
-//    1e3, 1e4, 1e5 depart by 8 %, 16 %, 26 %. "Coincide" is asserted as: the band {1, 10, 100} is at most
-//    4 % wide at every step and narrower at the end than any later single-decade drop (0.24 N against
-//    0.38 N and more). The softening of our 100 MPa curve (2.5 % below 10 MPa) is the first visible step
-//    of the same trend; the paper's sweep is PFEM, whose FEM reference is shown only in a detail view.
-//  - Fig 9: the final pressure jump is 3.03 MPa at alpha_s = 1 against 0.456 MPa at 1e4 (6.6 x; at least
-//    5.6 x at every step), and it falls monotonically with alpha_s at every step.
-//  - p1 locks: 76.3 N at the end (11.7 x p1p1_uphi), at least 1.47 x at every step.
+//  - Reference: about 6.5 N ([3, 21] of the seed), met by p1p1_uphi with alpha_s = K/10: 6.498 N.
+//  - Fig 8, alpha_s = 1, 10, 100, 1e3, 1e4, 1e5 MPa: 7.441, 7.438, 7.408, 7.118, 6.498, 5.691 N. The paper
+//    says 1 ... 100 "quasi coincide" and 1e3 ... 1e5 soften increasingly. Ours: the curves 1, 10, 100 stay
+//    within 0.8 % of each other over the whole path (they cross at 1e-4 relative, so no order is asserted
+//    among them), and each decade from 100 on lowers the force at every step, by a growing amount at the
+//    end: 0.003, 0.030, 0.29, 0.62, 0.81 N per decade. "Coincide" is asserted as: the band {1, 10, 100} is
+//    at most 1 % wide at every step and narrower at the end than any later single-decade drop.
+//  - Fig 9: the final pressure jump is 2.73 MPa at alpha_s = 1 against 0.464 MPa at 1e4 (5.9 x; at least
+//    4.1 x at every step), and it falls monotonically with alpha_s at every step.
+//  - p1 locks: 4.35 x the force of p1p1_uphi at u_pre = 0.132 mm, at least 1.46 x at every step; its
+//    locked cells then distort until Newton fails (step 133).
+//  (Numbers for the shifted mesh whose end trapezoids are cut by their Delaunay diagonal, so that a PFEM
+//  remesh keeps the generated cells; the earlier diagonal gave 6.504 N and 7.75 ... 5.70 N.)
 //  - Fig 10 says tri6 (FEM) is "slightly stiffer" than p1p1_uphi with K/10. We observe the opposite on the
 //    paper's 4x8 mesh: tri6 is 5-7 % softer at every step (ratio 0.926 ... 0.949; 6.096 N at the end). This
 //    is asserted as it is, not tuned. The refinement evidence says the 4x8 forces are far from converged and
@@ -117,7 +118,7 @@ TEST_F(ConstrainedBlock, CommittedSceneIsP1P1UPhiWithKOver10AndEndsWithinFivePer
   const double force = -run.probes.at("reaction");
   std::printf("[constrained block] committed scene: F = %.4f N (%+.2f %% from %.1f N)\n", force,
               100 * (force - kReferenceForce) / kReferenceForce, kReferenceForce);
-  EXPECT_LE(verification::relative_error(force, kReferenceForce), 0.05);  // the 5 %; observed +0.07 %
+  EXPECT_LE(verification::relative_error(force, kReferenceForce), 0.05);  // the 5 %; observed -0.03 %
   // The explicit alpha_s = 1e4 of the sweep is the same run.
   EXPECT_NEAR(k_over_10().final_force(), force, 1e-9 * force);
   // Newton: 2 iterations per step observed (400 in all); a broken tangent would need many more.
@@ -126,26 +127,27 @@ TEST_F(ConstrainedBlock, CommittedSceneIsP1P1UPhiWithKOver10AndEndsWithinFivePer
 
 TEST_F(ConstrainedBlock, StabilisationSweepCoincidesUpTo100MPaThenSoftensMonotonically) {
   for (const auto& a : kAlphas) expect_complete(uphi(a));
-  // 1. Monotone softening: a larger alpha_s gives a smaller force at every step.
-  for (std::size_t k = 0; k + 1 < kAlphas.size(); ++k)
+  // 1. Softening from 100 MPa on: each decade gives a smaller force at every step.
+  for (std::size_t k = 2; k + 1 < kAlphas.size(); ++k)
     for (int s = 1; s <= kSteps; ++s)
       ASSERT_LT(uphi(kAlphas[k + 1]).force[s], uphi(kAlphas[k]).force[s]) << kAlphas[k + 1] << " vs " << kAlphas[k] << ", step " << s;
-  // 2. The curves 1, 10, 100 MPa coincide: their band is at most 4 % of the force at every step (observed
-  //    3.1 %, reached at the end)...
+  // 2. The curves 1, 10, 100 MPa coincide: their band is at most 1 % of the force at every step (observed
+  //    0.78 %)...
   double band = 0.0;
   for (int s = 1; s <= kSteps; ++s) {
-    const double hi = uphi("1").force[s], lo = uphi("100").force[s];  // ordered by 1.
+    const double f[3] = {uphi("1").force[s], uphi("10").force[s], uphi("100").force[s]};
+    const double hi = *std::max_element(f, f + 3), lo = *std::min_element(f, f + 3);
     band = std::max(band, (hi - lo) / hi);
   }
-  EXPECT_LE(band, 0.04);
-  // ...and at the end narrower than any single decade beyond (observed 0.24 N against 0.38, 0.63, 0.81 N),
-  // while the drop per decade grows all along (0.048, 0.19, 0.38, 0.63, 0.81 N).
-  const double band_final = uphi("1").final_force() - uphi("100").final_force();
+  EXPECT_LE(band, 0.01);
+  // ...and at the end narrower than any single decade beyond (observed 0.033 N against 0.29, 0.62, 0.81 N),
+  // while the drop per decade grows all along (0.003, 0.030, 0.29, 0.62, 0.81 N).
+  const double band_final = std::max(uphi("1").final_force(), uphi("10").final_force()) - uphi("100").final_force();
   std::vector<double> drop;
   for (std::size_t k = 0; k + 1 < kAlphas.size(); ++k) drop.push_back(uphi(kAlphas[k]).final_force() - uphi(kAlphas[k + 1]).final_force());
   for (std::size_t k = 2; k < drop.size(); ++k) EXPECT_GT(drop[k], band_final) << "decade " << kAlphas[k] << " -> " << kAlphas[k + 1];
   for (std::size_t k = 1; k < drop.size(); ++k) EXPECT_GT(drop[k], drop[k - 1]) << "decade " << kAlphas[k] << " -> " << kAlphas[k + 1];
-  // The softest curve departs clearly: more than 20 % below alpha_s = 1 at the end (observed 26 %).
+  // The softest curve departs clearly: more than 20 % below alpha_s = 1 at the end (observed 24 %).
   EXPECT_LT(uphi("1e5").final_force(), 0.8 * uphi("1").final_force());
   std::printf("[constrained block] band 1-100 MPa: %.2f %% (final %.3f N); decade drops:", 100 * band, band_final);
   for (double d : drop) std::printf(" %.3f", d);
@@ -153,11 +155,11 @@ TEST_F(ConstrainedBlock, StabilisationSweepCoincidesUpTo100MPaThenSoftensMonoton
 }
 
 TEST_F(ConstrainedBlock, PressureJumpIsMuchLargerAtAlpha1ThanAtKOver10) {
-  // Fig 9: pressure oscillations at alpha_s = 1 MPa, none to speak of at K/10. Observed final 3.03 against
-  // 0.456 MPa (6.6 x), at least 5.6 x at every step. 4 x keeps a margin below the observed minimum; a
+  // Fig 9: pressure oscillations at alpha_s = 1 MPa, none to speak of at K/10. Observed final 2.73 against
+  // 0.464 MPa (5.9 x), at least 4.1 x at every step. 3.5 x keeps a margin below the observed minimum; a
   // stabilisation that did not act on the pressure field would give about 1 x.
   for (int s = 1; s <= kSteps; ++s) {
-    ASSERT_GT(uphi("1").jump[s], 4.0 * k_over_10().jump[s]) << "step " << s;
+    ASSERT_GT(uphi("1").jump[s], 3.5 * k_over_10().jump[s]) << "step " << s;
     for (std::size_t k = 0; k + 1 < kAlphas.size(); ++k)
       ASSERT_LT(uphi(kAlphas[k + 1]).jump[s], uphi(kAlphas[k]).jump[s]) << kAlphas[k + 1] << ", step " << s;
   }
@@ -168,10 +170,11 @@ TEST_F(ConstrainedBlock, PressureJumpIsMuchLargerAtAlpha1ThanAtKOver10) {
 
 TEST_F(ConstrainedBlock, P1LocksFarStifferThanTheMixedElement) {
   const Curve& p1 = p1_4x8();
-  expect_complete(p1);
-  // Observed: 1.47 x at the start, 11.7 x at the end (76.3 N).
-  for (int s = 1; s <= kSteps; ++s) ASSERT_GT(p1.force[s], 1.3 * k_over_10().force[s]) << "step " << s;
-  EXPECT_GT(p1.final_force(), 5.0 * k_over_10().final_force());
+  // The locked cells distort until Newton gives up (observed at step 133, exit code 1 with the last
+  // converged step); up to there: 1.46 x at the start, 4.35 x at step 132.
+  ASSERT_GE(p1.force.size(), std::size_t(121)) << p1.summary.failure;
+  for (std::size_t s = 1; s < p1.force.size(); ++s) ASSERT_GT(p1.force[s], 1.3 * k_over_10().force[s]) << "step " << s;
+  EXPECT_GT(p1.force[120], 3.0 * k_over_10().force[120]);
 }
 
 TEST_F(ConstrainedBlock, Tri6IsSofterThanP1P1UPhiOnThe4x8MeshAndStifferOnceRefined) {
