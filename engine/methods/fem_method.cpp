@@ -34,6 +34,7 @@ std::string file_stem(const std::string& name) {
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  if (options_.profile) timers_.enable_profile();
   probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   build_graph();
 }
