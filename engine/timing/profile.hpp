@@ -10,8 +10,9 @@
 // the assemblies after it (line-search trials included). Repeated scopes with the same path are merged
 // (calls counts them), as a flame graph merges equal stacks. A scope that started inside a graph run but
 // does not lie inside its parent's time (the VTK writer, which runs while the next step computes) is
-// listed at the step level under its full name with "concurrent": true, so that children never exceed
-// their parent.
+// listed at the step level under its full name with "concurrent": true, so that every child lies within
+// its parent's time. Systems of one step may overlap (probes and output run in parallel), so a step's
+// children may add up to more than the step; below the systems, phases run one after the other.
 #pragma once
 
 #include <ostream>
