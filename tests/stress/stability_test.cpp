@@ -31,6 +31,13 @@ std::string known_limitation(const std::string& case_name) {
       {"p1p1_uphi, nu = 0.4999: released cantilever",
        "Newton stalls at |r| ~ 3e-8 |r_0| in the first step (round-off floor above residual_relative = 1e-8; the next row: "
        "holds with 1e-7)"},
+      {"p1p1_uphi: constrained block (8x4), 0.2 mm in",
+       "p1p1_uphi depends on the load path: the history F~_n = c F_n (seed 000 eq 28) carries the volumetric correction "
+       "c = (phi/J)^(1/3) of every step into the next, so the static answer changes with the step size (Cook's "
+       "membrane: 7e-5 between 1 and 50 steps; here 5 %)"},
+      {"p1: constrained block (8x4), 0.2 mm in 1 step",
+       "the locked P1 block has more than one equilibrium (the free half of the top rises by 0.84 or by 1.0 mm for an "
+       "indentation of 0.2 mm): loading in 1 to 5 steps lands on the other one"},
       {"p1: Cook's membrane (Neo-Hooke) 16x16 alternating",
        "P1 escapes locking on the alternating pattern only through its singular vertices (four cells along two straight "
        "lines); distortion removes them and P1 locks again"}};
@@ -133,15 +140,23 @@ std::string amplitude_check(const std::vector<double>& u, std::size_t from, std:
 TEST(Stress, LargeTimeSteps) {
   const std::string group = "large time steps";
   for (const auto& element : kElements) {
+    // A static hyperelastic problem does not depend on the load path: the final reaction in 1 or 10 steps
+    // must be the one of the scene's 200 steps (to 1e-6, Newton's tolerance aside).
+    TempDir ref_out("stress_large_block_ref");
+    const Outcome ref = run_checked(scene_path("constrained_block_fem.toml"), ref_out.path(), {"--set", element_set(element), "--set", "output.every=0"});
     for (int steps : {1, 10}) {
       SCOPED_TRACE(element + " constrained block in " + std::to_string(steps) + " steps");
       TempDir out("stress_large_block");
       const Outcome o = run_checked(scene_path("constrained_block_fem.toml"), out.path(),
                                     {"--set", element_set(element), "--set", "time.steps=" + std::to_string(steps), "--set",
                                      "time.dt=" + std::to_string(200.0 / steps), "--set", "output.every=0"});
-      record(group, element + ": constrained block (8x4), 0.2 mm in " + std::to_string(steps) + " step(s)", o,
-             o.converged ? "reaction " + format(last(o, "reaction"), 5) + " N, " + std::to_string(o.newton_iterations) + " Newton" : "",
-             o.clean ? "holds (ends cleanly)" : "FAILS: " + o.why_unclean);
+      const std::string name = element + ": constrained block (8x4), 0.2 mm in " + std::to_string(steps) + " step(s)";
+      const double change = std::abs(last(o, "reaction") / last(ref, "reaction") - 1.0);
+      record(group, name, o,
+             o.converged ? "reaction " + format(last(o, "reaction"), 5) + " N (200 steps: " + format(last(ref, "reaction"), 5) + " N), " +
+                               std::to_string(o.newton_iterations) + " Newton"
+                         : "",
+             judge(name, o, o.converged && ref.converged && change < 1e-6, "the result depends on the load steps"));
     }
     {
       SCOPED_TRACE(element + " homogeneous compression in one step");
