@@ -53,7 +53,7 @@ def _series_order(cases):
 
 def _slope(x, y):
     x, y = np.log(np.asarray(x, float)), np.log(np.asarray(y, float))
-    if len(x) < 2:
+    if len(set(x[-3:])) < 2:  # e.g. a time-step series: the dofs do not change
         return float("nan")
     return float(np.polyfit(x[-3:], y[-3:], 1)[0])
 
@@ -83,7 +83,7 @@ def plot_study(study, cases, outdir, self_times):
                 if not xs:
                     continue
                 label = s
-                if xkey == "dofs" and len(xs) >= 3:
+                if xkey == "dofs" and len(xs) >= 3 and math.isfinite(_slope(xs, ys)):
                     label += f" (slope {_slope(xs, ys):.2f})"
                 ax.loglog(xs, ys, marker=MARKERS[k % len(MARKERS)], color=COLOURS[2 * (k % 10)], label=label)
             ax.set_xlabel(xlabel)
