@@ -26,11 +26,11 @@ const std::vector<std::string> kElements = {"p1", "tri6", "p1p1_uphi"};
 std::string known_limitation(const std::string& case_name) {
   static const std::pair<const char*, const char*> known[] = {
       {"p1p1_uphi, nu = 0.49999",
-       "Newton stalls at |r| ~ 1e-7 |r_0|, the round-off of the lambda terms at lambda/mu = 5e4, above solver.residual_relative "
-       "= 1e-8 (the next row: converges with 1e-7)"},
+       "Newton stalls at a residual of ~1e-7 of the first, the round-off of the lambda terms at lambda/mu = 5e4, above "
+       "solver.residual_relative = 1e-8 (the next row: converges with 1e-7)"},
       {"p1p1_uphi, nu = 0.4999: released cantilever",
-       "Newton stalls at |r| ~ 3e-8 |r_0| in the first step (round-off floor above residual_relative = 1e-8; the next row: "
-       "holds with 1e-7)"},
+       "Newton stalls at a residual of ~3e-8 of the first in the first step (round-off floor above residual_relative = "
+       "1e-8; the next row: holds with 1e-7)"},
       {"p1p1_uphi: constrained block (8x4), 0.2 mm in",
        "p1p1_uphi depends on the load path: the history F~_n = c F_n (seed 000 eq 28) carries the volumetric correction "
        "c = (phi/J)^(1/3) of every step into the next, so the static answer changes with the step size (Cook's "
@@ -85,7 +85,7 @@ TEST(Stress, IncompressibleLimitForEachElement) {
     const Outcome o = run_checked(scene_path("cooks_membrane_neo_hooke.toml"), out.path(), args);
     const double ratio = last(o, "uy_C") / kCookNeoHooke;
     std::string check;
-    if (c.element == "p1" && o.clean && o.converged) check = ratio < 0.5 ? "locks (expected of P1 on this pattern)" : "holds";
+    if (c.element == "p1" && o.clean && o.converged) check = ratio < 0.8 ? "locks (expected of P1 on this pattern)" : "holds";
     else check = judge(name, o, o.converged && ratio > 0.9 && ratio < 1.05, "u_y(C) outside 0.9 ... 1.05 of the reference");
     record("nu -> 0.5 (Cook's membrane, Neo-Hooke, 16x16)", name, o,
            o.converged ? "u_y(C) = " + format(last(o, "uy_C"), 5) + " (" + format(100 * ratio, 3) + " % of 0.2761), " +
