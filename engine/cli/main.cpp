@@ -22,19 +22,20 @@ namespace {
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  loom run SCENE [--out DIR] [--threads N] [--set key.path=value]... [--quiet] [--verbose]\n"
+    "  loom run SCENE [--out DIR] [--threads N] [--set key.path=value]... [--quiet] [--verbose] [--profile]\n"
     "  loom check SCENE [--set key.path=value]...   validate the scene and build its mesh, do not run\n"
     "  loom info SCENE [--set key.path=value]...    print the step graph and the store sizes\n"
     "  loom schema [--markdown]                      print every scene key with type, default and meaning\n"
     "  loom --version\n"
     "--set addresses arrays of tables by index or by name: body[0].mesh.divisions=[16,16],\n"
-    "material[rubber].nu=0.3. Exit codes: 0 success, 1 the run failed, 2 bad input.\n";
+    "material[rubber].nu=0.3. --profile adds per-step, per-system and per-Newton-iteration timings to\n"
+    "timings.json. Exit codes: 0 success, 1 the run failed, 2 bad input.\n";
 
 struct Args {
   std::string command, scene, out;
   std::vector<std::string> sets;
   int threads = 0;
-  bool quiet = false, markdown = false, verbose = false;
+  bool quiet = false, markdown = false, verbose = false, profile = false;
 };
 
 Args parse(int argc, char** argv) {
@@ -62,6 +63,7 @@ Args parse(int argc, char** argv) {
       }
     } else if (s == "--quiet") a.quiet = true;
     else if (s == "--verbose") a.verbose = true;
+    else if (s == "--profile") a.profile = true;
     else if (s == "--markdown") a.markdown = true;
     else if (!s.empty() && s[0] == '-') throw loom::InputError("unknown option " + s + "\n" + kUsage);
     else if (a.scene.empty()) a.scene = s;
@@ -82,6 +84,7 @@ int run(const Args& a) {
   options.progress = !a.quiet;
   options.log = &std::cerr;
   options.verbose = a.verbose;
+  options.profile = a.profile;
   auto method = loom::make_method_run(scene, options);
   loom::RunSummary summary = method->run();
   summary.threads = threads;

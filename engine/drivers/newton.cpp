@@ -6,8 +6,24 @@
 
 namespace loom {
 
+namespace {
+
+// Marks the Newton iteration in progress for the profile; -1 when the loop is left, however.
+class IterationMark {
+ public:
+  explicit IterationMark(Timers& timers) : timers_(timers) { timers_.set_iteration(0); }
+  ~IterationMark() { timers_.set_iteration(-1); }
+  void set(int iteration) { timers_.set_iteration(iteration); }
+
+ private:
+  Timers& timers_;
+};
+
+}  // namespace
+
 NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& timers) {
   NewtonReport report;
+  IterationMark iteration_mark(timers);
   auto fail = [&](const std::string& why) {
     report.failure = why;
     return report;
@@ -36,6 +52,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   }
 
   for (int it = 1; it <= s.max_iterations; ++it) {
+    iteration_mark.set(it);
     bool solved;
     {
       ScopedTimer t(timers, "newton/solve");

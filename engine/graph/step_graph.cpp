@@ -138,8 +138,10 @@ void StepGraph::build() {
 void StepGraph::run() {
   LOOM_ASSERT(impl_->built, "build() the graph before running it");
   impl_->error = nullptr;
+  impl_->timers.begin_graph_run(ctx_.step, ctx_.t, ctx_.dt);
   impl_->start.try_put(flow::continue_msg());
   impl_->graph.wait_for_all();
+  impl_->timers.end_graph_run();
   if (!impl_->error) return;
   const std::string where = impl_->error_node;
   try {

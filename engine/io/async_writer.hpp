@@ -1,6 +1,6 @@
 // Runs output jobs (VTK frames) concurrently with the next step (DESIGN §4), one job at a time and in
 // submission order: submitting waits for the previous job, so at most one snapshot is in flight.
-// Jobs run inside the run's oneTBB arena and so respect --threads.
+// A job runs on a thread of its own (one writer thread beside oneTBB's --threads; the VTK writer is serial).
 #pragma once
 
 #include <exception>

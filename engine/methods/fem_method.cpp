@@ -34,6 +34,7 @@ std::string file_stem(const std::string& name) {
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  if (options_.profile) timers_.enable_profile();
   pfem_ = scene_.scene.method == Method::pfem;
   if (pfem_) {
     const PfemSpec& p = scene_.pfem;

@@ -19,6 +19,7 @@ struct RunOptions {
   bool write_files = true;       // false for `loom info` / `loom check`
   bool progress = true;
   bool verbose = false;          // Newton residuals of every iteration to `log`
+  bool profile = false;          // per-step profile in timings.json (engine/timing/profile.hpp)
   std::ostream* log = nullptr;   // run messages (cut-backs, failure); nullptr: silent
 };
 

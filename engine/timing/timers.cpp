@@ -23,7 +23,60 @@ std::map<std::string, TimerStats> Timers::snapshot() const {
 void Timers::clear() {
   std::lock_guard lock(mutex_);
   stats_.clear();
+  runs_.clear();
+  events_.clear();
 }
+
+void Timers::enable_profile() {
+  std::lock_guard lock(mutex_);
+  profiling_ = true;
+  origin_ = Clock::now();
+}
+
+void Timers::add_scope(const std::string& name, const ProfileMark& mark, Clock::time_point start, Clock::time_point end) {
+  const double seconds = std::chrono::duration<double>(end - start).count();
+  std::lock_guard lock(mutex_);
+  auto& s = stats_[name];
+  ++s.calls;
+  s.total += seconds;
+  s.max = std::max(s.max, seconds);
+  if (!profiling_) return;
+  events_.push_back({name, mark.run, mark.iteration, std::chrono::duration<double>(start - origin_).count(), seconds});
+}
+
+void Timers::begin_graph_run(int step, double t, double dt) {
+  if (!profiling_) return;
+  std::lock_guard lock(mutex_);
+  runs_.push_back({step, t, dt, std::chrono::duration<double>(Clock::now() - origin_).count(), 0.0});
+  run_.store(int(runs_.size()) - 1, std::memory_order_relaxed);
+}
+
+void Timers::end_graph_run() {
+  if (!profiling_) return;
+  std::lock_guard lock(mutex_);
+  if (runs_.empty()) return;
+  runs_.back().seconds = std::chrono::duration<double>(Clock::now() - origin_).count() - runs_.back().start;
+}
+
+std::vector<ProfileRun> Timers::profile_runs() const {
+  std::lock_guard lock(mutex_);
+  return runs_;
+}
+
+std::vector<ProfileEvent> Timers::profile_events() const {
+  std::lock_guard lock(mutex_);
+  return events_;
+}
+
+namespace {
+
+std::vector<std::pair<std::string, double>> top_three(const std::map<std::string, TimerStats>& stats) {
+  std::vector<TimerTotal> totals;
+  for (const auto& [name, s] : stats) totals.push_back({name, s.total});
+  return most_expensive(totals, 3);
+}
+
+}  // namespace
 
 void Timers::print_table(std::ostream& os, double wall) const {
   const auto stats = snapshot();
@@ -59,6 +112,14 @@ void Timers::print_table(std::ostream& os, double wall) const {
     for (const auto& [child, cs] : children_of(name)) print(child, cs, indent + "  ");
   };
   for (const auto& [name, s] : children_of("")) print(name, s, "");
+  os << "most expensive (self time):";
+  int rank = 0;
+  for (const auto& [name, self] : top_three(stats)) {
+    os << (rank ? "," : "") << " ";
+    os << ++rank << ". " << name << " " << std::fixed << std::setprecision(3) << self << " s ("
+       << std::setprecision(1) << (wall > 0 ? 100.0 * self / wall : 0.0) << "%)";
+  }
+  os << "\n";
   os.flags(flags);
 }
 
@@ -73,7 +134,18 @@ void Timers::write_json(std::ostream& os, double wall) const {
        << ", \"share\": " << (wall > 0 ? s.total / wall : 0.0) << "}";
     first = false;
   }
-  os << "\n  }\n}\n";
+  os << "\n  },\n  \"most_expensive\": [";
+  first = true;
+  for (const auto& [name, self] : top_three(stats)) {
+    os << (first ? "" : ", ") << "{\"name\": \"" << name << "\", \"self\": " << self << ", \"share\": " << (wall > 0 ? self / wall : 0.0) << "}";
+    first = false;
+  }
+  os << "]";
+  if (profiling_) {
+    os << ",\n  \"profile\": ";
+    write_profile_json(os, profile_runs(), profile_events(), "  ");
+  }
+  os << "\n}\n";
   os.flags(flags);
 }
 

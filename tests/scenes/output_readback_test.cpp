@@ -9,6 +9,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -230,6 +231,91 @@ TEST(OutputReadBack, FramesFollowOutputEveryAndTheLastStepIsAlwaysWritten) {
   TempDir none("output_every0");
   ASSERT_EQ(run_loom({"run", kCook, "--out", none.path(), "--quiet", "--set", "output.every=0"}).exit_code, 0);
   EXPECT_EQ(files_under(none.path()), (std::vector<std::string>{"probes.csv", "run.json", "timings.json"}));
+}
+
+// --profile: timings.json gains "profile" with one entry per step, each holding the systems that ran;
+// the newton system holds one "iteration k" per Newton iteration (0: the first assembly), each holding
+// the sub-phases. Every child lies within its parent's time (concurrent entries aside); the phases of a
+// system run one after the other, so below the step level they also add up to at most their parent (the
+// systems of a step may overlap: probes and output run in parallel). Without --profile there is no
+// "profile" key; "most_expensive" is always there.
+double seconds_of(const Json& node) { return node.at("seconds").number; }
+
+void expect_children_within(const Json& node, const std::string& path, bool sequential) {
+  if (!node.has("children")) return;
+  const double begin = node.at("start").number, end = begin + seconds_of(node), slack = 2e-6;
+  double sum = 0.0;
+  for (const Json& c : node.at("children").array) {
+    const std::string name = c.at("name").string;
+    EXPECT_GE(seconds_of(c), 0.0) << path << "/" << name;
+    if (c.has("concurrent")) continue;
+    sum += seconds_of(c);
+    EXPECT_GE(c.at("start").number, begin - slack) << path << "/" << name;
+    EXPECT_LE(c.at("start").number + seconds_of(c), end + slack) << path << "/" << name;
+    expect_children_within(c, path + "/" + name, true);
+  }
+  if (sequential) {
+    EXPECT_LE(sum, seconds_of(node) + slack) << path;
+  }
+}
+
+TEST(OutputReadBack, ProfileNestsStepSystemIterationAndSubPhase) {
+  TempDir out("output_profile");
+  const std::string base = out.file("base_with_newton.toml");  // tests/scenes/base.toml (2 steps) + a newton probe
+  write_text(base, read_text(std::string(LOOM_SOURCE_DIR) + "/tests/scenes/base.toml") +
+                       "\n[[probe]]\nname = \"newton\"\nkind = \"newton\"\n");
+  const Command c = run_loom({"run", base, "--out", out.path(), "--profile"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("most expensive (self time): 1. "), std::string::npos) << c.out;
+  const Json timings = parse_json(read_text(out.file("timings.json")));
+  for (const char* key : {"wall", "timers", "most_expensive", "profile"}) EXPECT_TRUE(timings.has(key)) << key;
+  EXPECT_EQ(timings.at("most_expensive").array.size(), 3u);
+  const ProbeTable probes = read_probes(out.file("probes.csv"));
+  const auto newton = probes.column("newton");
+
+  const auto& steps = timings.at("profile").at("steps").array;
+  // The initial state may come first as step 0 (the first frame's writer); then steps 1 and 2.
+  std::vector<const Json*> scene_steps;
+  for (const Json& s : steps)
+    if (s.at("step").number > 0) scene_steps.push_back(&s);
+  ASSERT_EQ(scene_steps.size(), 2u);
+  for (std::size_t k = 0; k < scene_steps.size(); ++k) {
+    const Json& step = *scene_steps[k];
+    SCOPED_TRACE(step.at("name").string);
+    EXPECT_EQ(step.at("name").string, "step " + std::to_string(k + 1));
+    EXPECT_EQ(step.at("t").number, double(k + 1));
+    EXPECT_EQ(step.at("dt").number, 1.0);
+    expect_children_within(step, step.at("name").string, false);
+    std::vector<std::string> systems;
+    const Json* newton_node = nullptr;
+    for (const Json& s : step.at("children").array) {
+      systems.push_back(s.at("name").string);
+      if (s.at("name").string == "newton") newton_node = &s;
+    }
+    for (const char* name : {"apply_boundary_conditions", "newton", "commit", "probes", "output"})
+      EXPECT_NE(std::find(systems.begin(), systems.end(), name), systems.end()) << name;
+    ASSERT_NE(newton_node, nullptr);
+    const auto& iterations = newton_node->at("children").array;
+    ASSERT_EQ(iterations.size(), std::size_t(newton[k + 1]) + 1);  // iteration 0 (first assembly) and one per solve
+    for (std::size_t i = 0; i < iterations.size(); ++i) {
+      EXPECT_EQ(iterations[i].at("name").string, "iteration " + std::to_string(i));
+      std::vector<std::string> phases;
+      for (const Json& ph : iterations[i].at("children").array) phases.push_back(ph.at("name").string);
+      const std::vector<std::string> expected =
+          i == 0 ? std::vector<std::string>{"assemble"} : std::vector<std::string>{"solve", "update", "assemble"};
+      EXPECT_EQ(phases, expected);
+    }
+    const Json& solve = iterations[1].at("children").array[0];
+    ASSERT_TRUE(solve.has("children"));
+    EXPECT_EQ(solve.at("children").array[0].at("name").string, "factorize");
+    EXPECT_EQ(solve.at("children").array[1].at("name").string, "back_substitute");
+  }
+
+  TempDir plain("output_no_profile");
+  ASSERT_EQ(run_loom({"run", base, "--out", plain.path(), "--quiet"}).exit_code, 0);
+  const Json t2 = parse_json(read_text(plain.file("timings.json")));
+  EXPECT_FALSE(t2.has("profile"));
+  EXPECT_TRUE(t2.has("most_expensive"));
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <sys/wait.h>
+
 #include "engine/scene/schema.hpp"
 #include "tests/scenes/scene_checks.hpp"
 #include "tests/support/test_support.hpp"
@@ -146,6 +148,18 @@ TEST(Program, RunPrintsTheTimingTableUnlessQuiet) {
   ASSERT_EQ(q.exit_code, 0);
   EXPECT_EQ(q.out, "");
   EXPECT_EQ(q.err, "");
+}
+
+// A frame is written while the next step runs; with one oneTBB thread the writer must still make progress
+// (it once waited for a task that the only thread could not take: runs with frames and --threads 1 hung).
+TEST(Program, OneThreadWithFramesEveryStepFinishes) {
+  TempDir dir("program_one_thread_frames");
+  const std::string cmd = "timeout 60 " + std::string(LOOM_BINARY) + " run " + kBase + " --threads 1 --quiet --out " + dir.path() +
+                          " --set time.steps=6 --set output.every=1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 0) << "exit 124: loom hung (killed by timeout after 60 s)";
+  EXPECT_EQ(parse_pvd(read_text(dir.file("malformed-base.pvd"))).size(), 7u);
 }
 
 // Assembly is coloured and reductions are ordered: the thread count must not change results (DESIGN §4).

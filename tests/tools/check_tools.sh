@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Smoke test of tools/study and tools/render (ctest label scene): a two-case study into a temporary
+# directory, then checks that the CSV has its columns and rows, that every plot and the picture are PNG
+# files, and that tools/profile_folded reads a --profile run. Usage: check_tools.sh LOOM
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+loom=$1
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+tools/study tests/tools/smoke_study.toml --loom "$loom" --out "$out" 2>"$out/log" || { cat "$out/log"; exit 1; }
+csv="$out/smoke/smoke.csv"
+head -1 "$csv" | grep -q '^study,series,case,param,dofs,cells,steps,threads,converged,wall_s,process_s,newton_iterations,cutbacks,reaction,reaction_reference,reaction_error,ux_right,ux_right_reference,ux_right_error,t:' \
+  || { echo "unexpected CSV header: $(head -1 "$csv")"; exit 1; }
+[ "$(wc -l < "$csv")" -eq 3 ] || { echo "expected 2 rows in $csv"; cat "$csv"; exit 1; }
+# The analytic error is round-off; the finest case is its own reference (error 0).
+awk -F, 'NR > 1 && ($16 > 1e-10 || $9 != 1) { bad = 1 } END { exit bad }' "$csv" || { echo "wrong errors in $csv"; cat "$csv"; exit 1; }
+for f in smoke_work_precision.png smoke_error_dofs.png smoke_breakdown.png smoke_J.png; do
+  head -c 8 "$out/smoke/$f" | od -An -c | grep -q 'P   N   G' || { echo "$f is not a PNG"; exit 1; }
+done
+"$loom" run scenes/homogeneous_compression.toml --out "$out/profiled" --quiet --profile --set output.every=0
+tools/profile_folded "$out/profiled/timings.json" | grep -q '^step 1;newton;iteration 1;solve;factorize [0-9]*$' \
+  || { echo "profile_folded: no 'step 1;newton;iteration 1;solve;factorize' stack"; exit 1; }
+echo "tools ok"
