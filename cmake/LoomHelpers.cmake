@@ -13,9 +13,10 @@ function(loom_add_test)
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE loom_testing GTest::gtest_main ${T_LIBS})
   loom_set_warnings(${T_NAME})
+  # The solver thread pins of the loom program (engine/cli/main.cpp) for tests that run systems in-process.
   gtest_discover_tests(${T_NAME}
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-    PROPERTIES LABELS "${T_LABELS}"
+    PROPERTIES LABELS "${T_LABELS}" ENVIRONMENT "OMP_THREAD_LIMIT=1;OPENBLAS_NUM_THREADS=1"
     DISCOVERY_TIMEOUT 60)
 endfunction()
 

@@ -3,6 +3,9 @@
 #include <oneapi/tbb/global_control.h>
 #include <oneapi/tbb/info.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -115,7 +118,21 @@ int run(const Args& a) {
 
 }  // namespace
 
+// Debian's CHOLMOD runs its supernodal factorization in OpenMP teams of a fixed size (4) whatever the
+// machine, and OpenBLAS spins idle threads: on two cores both oversubscribe the oneTBB workers and make a
+// factorization 1.6-2.9x slower (perf/README.md). The OpenMP runtime reads its limit when it is loaded,
+// before main, so loom sets OMP_THREAD_LIMIT=1 and OPENBLAS_NUM_THREADS=1 (unless the user set them) and
+// starts itself again, once.
+void pin_solver_threads(char** argv) {
+  if (std::getenv("OMP_THREAD_LIMIT") || std::getenv("LOOM_NO_REEXEC")) return;
+  setenv("OMP_THREAD_LIMIT", "1", 1);
+  if (!std::getenv("OPENBLAS_NUM_THREADS")) setenv("OPENBLAS_NUM_THREADS", "1", 1);
+  setenv("LOOM_NO_REEXEC", "1", 1);
+  execv("/proc/self/exe", argv);  // returns only on failure: then go on as we are
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "run") pin_solver_threads(argv);
   try {
     const Args a = parse(argc, argv);
     if (a.command == "--version" || a.command == "version") {
