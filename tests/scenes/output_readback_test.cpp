@@ -243,7 +243,9 @@ double seconds_of(const Json& node) { return node.at("seconds").number; }
 
 void expect_children_within(const Json& node, const std::string& path, bool sequential) {
   if (!node.has("children")) return;
-  const double begin = node.at("start").number, end = begin + seconds_of(node), slack = 2e-6;
+  // slack: clock reads of nested scopes on a loaded machine (a parent's stop is not atomic with its
+  // children's), observed up to 6 us; structure errors are off by whole system times.
+  const double begin = node.at("start").number, end = begin + seconds_of(node), slack = 1e-4;
   double sum = 0.0;
   for (const Json& c : node.at("children").array) {
     const std::string name = c.at("name").string;
