@@ -3,6 +3,8 @@
 // `copy_from` shortcut the recipe uses for cells that kept their corners.
 #include <gtest/gtest.h>
 
+#include <oneapi/tbb/global_control.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
@@ -98,6 +100,35 @@ TEST(MapState, CpmCopiesTheNearestOldPoint) {
     for (std::size_t i = 1; i < old_x.size(); ++i)
       if ((old_x[i] - new_x[k]).norm() < (old_x[best] - new_x[k]).norm()) best = i;
     EXPECT_EQ(new_F[k], old_F[best]) << "new point " << k;
+  }
+}
+
+// Many queries (20000: several hundred chunks of Hilbert-sorted points, each walking from the previous one,
+// run in parallel): CPM still finds the nearest old point (brute force), and CPM and BTM-ISO2 give the same
+// bits on one thread and on all cores (the walk's start never depends on the thread count).
+TEST(MapState, ManyQueriesAreExactAndIndependentOfTheThreadCount) {
+  std::mt19937_64 gen(11);
+  const std::vector<Vec2> old_x = jittered_grid(gen), new_x = random_points(gen, 20000);
+  std::vector<Mat3> old_F;
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  for (std::size_t i = 0; i < old_x.size(); ++i) old_F.push_back(Mat3::Identity() + Mat3::NullaryExpr([&] { return u(gen); }));
+  const std::vector<Index> none(new_x.size(), kNoIndex);
+  for (MapSettings s : {MapSettings{}, btm(IsoMode::iso2)}) {
+    std::vector<Mat3> serial, parallel;
+    MapStats stats;
+    {
+      oneapi::tbb::global_control one(oneapi::tbb::global_control::max_allowed_parallelism, 1);
+      map_state(old_x, old_F, new_x, none, s, serial, stats);
+    }
+    map_state(old_x, old_F, new_x, none, s, parallel, stats);
+    for (std::size_t k = 0; k < new_x.size(); ++k) ASSERT_EQ(serial[k], parallel[k]) << "point " << k;
+    if (s.scheme != MapScheme::cpm) continue;
+    for (std::size_t k = 0; k < new_x.size(); ++k) {
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < old_x.size(); ++i)
+        if ((old_x[i] - new_x[k]).squaredNorm() < (old_x[best] - new_x[k]).squaredNorm()) best = i;
+      ASSERT_EQ(serial[k], old_F[best]) << "new point " << k;
+    }
   }
 }
 
