@@ -145,5 +145,31 @@ TEST_P(PfemHomogeneous, StaysExactThrough50RemeshesWithBtmIso2) { check(GetParam
 
 INSTANTIATE_TEST_SUITE_P(Elements, PfemHomogeneous, ::testing::Values("p1", "tri6", "p1p1_uphi"));
 
+// remesh.every = 2: the odd steps do not remesh, and their `remesh` probes say so (0 changed, 0 area change)
+// instead of repeating the previous step's remesh; the even steps still change the connectivity.
+TEST(PfemHomogeneousEvery2, RemeshProbesReportNoRemeshOnTheStepsBetween) {
+  const SceneSpec scene = testing::scene_from_text(
+      pfem_scene_text(), {"scene.method=pfem", "output.every=0", "body[0].mesh.divisions=[16,8]", "time.steps=" + std::to_string(kSteps),
+                          "time.dt=" + std::to_string(1.0 / kSteps), "boundary[top].displacement.y=\"-0.5 * t\"", "remesh.every=2"});
+  testing::TempDir dir("pfem_homogeneous_every2");
+  auto run = testing::make_fem_run(scene, dir.path());
+  ASSERT_TRUE(run->run().converged);
+  const auto probes = testing::read_probes(dir.file("probes.csv"));
+  const auto changed = probes.column("changed"), area_change = probes.column("area_change"), reaction = probes.column("reaction_top_y");
+  int even_changes = 0;
+  for (int n = 1; n <= kSteps; ++n) {
+    const auto k = std::size_t(n);
+    if (n % 2 == 1) {
+      EXPECT_EQ(changed[k], 0.0) << "step " << n;
+      EXPECT_EQ(area_change[k], 0.0) << "step " << n;
+    } else {
+      even_changes += changed[k] == 1.0;
+    }
+    EXPECT_LE(verification::relative_error(reaction[k], exact_state(kDepth * kH * n / kSteps).reaction), 1e-8) << "step " << n;
+  }
+  EXPECT_GE(even_changes, 10);  // 20 of the 25 remeshes observed
+  std::printf("[pfem homogeneous] remesh every 2 steps: %d of %d remeshes changed the connectivity\n", even_changes, kSteps / 2);
+}
+
 }  // namespace
 }  // namespace loom
