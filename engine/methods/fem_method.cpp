@@ -68,7 +68,11 @@ void FemRun::build_graph() {
     const auto remesh = g.add_node("remesh", {{&m_.materials}, {&topology_, &m_.nodes, &m_.cells, &m_.quad, &m_.bc, &m_.system}},
                                    [this] { remesh_node(); },
                                    "triangulate + alpha shape, transfer the history, rebuild dofs/sparsity where the connectivity changed");
-    g.run_if(remesh, nullptr, [this] { return ctx_.step % pfem_settings_.every == 0; });
+    g.run_if(remesh, nullptr, [this] {
+      const bool due = ctx_.step % pfem_settings_.every == 0;
+      if (!due) last_remesh_ = RemeshReport{};  // the remesh probes report this step's remesh: none
+      return due;
+    });
   }
   g.add_system("apply_boundary_conditions", &apply_boundary_conditions, m_.nodes, m_.cells, m_.materials, m_.bc);
   g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.system, &status_}}, [this] { newton_node(); },

@@ -284,13 +284,5 @@ TEST(Stress, LongDynamicRunsNeitherBlowUpNorGainEnergy) {
 }
 
 // 6. 1000 remeshes of a resting body (nothing may change): needs PFEM, which loom does not have yet.
-TEST(Stress, ThousandRemeshesOfARestingBody) {
-  Outcome none;
-  none.clean = true;
-  record("remeshing", "1000 remeshes of a resting body", none, "not run: needs the pfem method (remeshing), not implemented yet",
-         "not run");
-  GTEST_SKIP() << "needs the pfem method (remeshing), which loom does not have yet";
-}
-
 }  // namespace
 }  // namespace loom::stress
