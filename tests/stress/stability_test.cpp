@@ -232,28 +232,9 @@ TEST(Stress, OneAndTwoThreadsAgreeForEachElement) {
         {"constrained block 8x4, 200 steps", scene_path("constrained_block_fem.toml"), {element_set(element), "output.every=0"}}};
     for (const auto& c : cases) {
       SCOPED_TRACE(element + " " + c.name);
-      Outcome o[2];
-      for (int threads : {1, 2}) {
-        TempDir out("stress_threads_" + std::to_string(threads));
-        std::vector<std::string> args{"--threads", std::to_string(threads)};
-        for (const auto& s : c.sets) args.insert(args.end(), {"--set", s});
-        o[threads - 1] = run_checked(c.scene, out.path(), args);
-      }
-      double worst = 0.0;
-      bool same_shape = o[0].probes.rows.size() == o[1].probes.rows.size();
-      for (std::size_t r = 0; same_shape && r < o[0].probes.rows.size(); ++r)
-        for (std::size_t k = 0; k < o[0].probes.rows[r].size(); ++k) {
-          const double a = o[0].probes.rows[r][k], b = o[1].probes.rows[r][k];
-          worst = std::max(worst, a == b ? 0.0 : std::abs(a - b) / std::max(std::abs(a), std::abs(b)));
-        }
-      const bool same = same_shape && worst <= 1e-12 && o[0].newton_iterations == o[1].newton_iterations;
+      const ThreadComparison t = run_with_one_and_two_threads(c.scene, c.sets);
       const std::string name = element + ": " + c.name;
-      const std::string check = judge(name, o[1], same, "results depend on the thread count");
-      record(group, name, o[1],
-             "worst relative difference of the probes " + format(worst, 2) + "; Newton " + std::to_string(o[0].newton_iterations) +
-                 " / " + std::to_string(o[1].newton_iterations) + "; wall " + format(o[0].wall_seconds, 3) + " s / " +
-                 format(o[1].wall_seconds, 3) + " s",
-             check);
+      record(group, name, t.two, t.detail(), judge(name, t.two, t.same(), "results depend on the thread count"));
     }
   }
 }

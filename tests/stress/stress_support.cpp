@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -69,6 +70,29 @@ Outcome run_checked(const std::string& scene, const std::string& out, const std:
 double last(const Outcome& o, const std::string& probe) {
   if (o.probes.rows.empty()) return std::numeric_limits<double>::quiet_NaN();
   return o.probes.column(probe).back();
+}
+
+ThreadComparison run_with_one_and_two_threads(const std::string& scene, const std::vector<std::string>& sets) {
+  ThreadComparison t;
+  for (int threads : {1, 2}) {
+    testing::TempDir out("stress_threads_" + std::to_string(threads));
+    std::vector<std::string> args{"--threads", std::to_string(threads)};
+    for (const auto& s : sets) args.insert(args.end(), {"--set", s});
+    (threads == 1 ? t.one : t.two) = run_checked(scene, out.path(), args);
+  }
+  t.same_shape = t.one.probes.rows.size() == t.two.probes.rows.size();
+  for (std::size_t r = 0; t.same_shape && r < t.one.probes.rows.size(); ++r)
+    for (std::size_t k = 0; k < t.one.probes.rows[r].size(); ++k) {
+      const double a = t.one.probes.rows[r][k], b = t.two.probes.rows[r][k];
+      t.worst = std::max(t.worst, a == b ? 0.0 : std::abs(a - b) / std::max(std::abs(a), std::abs(b)));
+    }
+  return t;
+}
+
+std::string ThreadComparison::detail() const {
+  return "worst relative difference of the probes " + format(worst, 2) + "; Newton " + std::to_string(one.newton_iterations) +
+         " / " + std::to_string(two.newton_iterations) + "; wall " + format(one.wall_seconds, 3) + " s / " +
+         format(two.wall_seconds, 3) + " s";
 }
 
 namespace {

@@ -46,6 +46,17 @@ double last(const Outcome& o, const std::string& probe);
 void record(const std::string& group, const std::string& case_name, const Outcome& o, const std::string& detail,
             const std::string& check);
 
+// The same scene with 1 and 2 oneTBB threads (`--threads`): the probes of every step and the Newton
+// iterations must agree (assembly is ordered by cell colour, reductions are fixed-order).
+struct ThreadComparison {
+  Outcome one, two;
+  double worst = 0.0;       // largest relative difference of a probe value over all steps
+  bool same_shape = false;  // the same number of probe rows
+  bool same() const { return same_shape && worst <= 1e-12 && one.newton_iterations == two.newton_iterations; }
+  std::string detail() const;
+};
+ThreadComparison run_with_one_and_two_threads(const std::string& scene, const std::vector<std::string>& sets);
+
 std::string scene_path(const std::string& file);  // scenes/<file> in the source tree
 std::string stress_scene(const std::string& file);  // tests/stress/scenes/<file>
 std::string format(double v, int digits = 6);
