@@ -129,7 +129,8 @@ class Loader {
     m.name = read_name(t);
     m.where = t.where();
     if (find_by_name(s.materials, m.name) != kNoIndex) t.error("name", "a material named \"" + m.name + "\" already exists");
-    m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic}});
+    m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic},
+                                                                       {"neo_hooke_split", MaterialModel::neo_hooke_split}});
     m.density = t.real("density");
     const bool e_nu = t.has("E") || t.has("nu"), k_g = t.has("K") || t.has("G");
     if (e_nu && k_g) {

@@ -18,7 +18,7 @@ namespace loom {
 enum class Method { fem, pfem, es_pfem, mpm, mpm_fem };
 enum class Integrator { static_, euler_backward };
 enum class MassKind { lumped, consistent };
-enum class MaterialModel { neo_hooke, linear_elastic };
+enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split };
 enum class MeshGenerator { rectangle, cooks_membrane };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump };
 

@@ -48,8 +48,10 @@ std::vector<KeySpec> build_schema() {
   // [[material]]
   s.push_back(key("material", K::table_array, "Materials; give either (E, nu) or (K, G).").require());
   s.push_back(key("material[].name", K::string, "Name bodies refer to.").require());
-  s.push_back(key("material[].model", K::choice, "neo_hooke: seed 000 eq 48-51; linear_elastic: small-strain Hooke.")
-                  .one_of({"neo_hooke", "linear_elastic"}).require());
+  s.push_back(key("material[].model", K::choice,
+                  "neo_hooke: seed 000 eq 48-51; linear_elastic: small-strain Hooke; neo_hooke_split: deviatoric Neo-Hooke on "
+                  "the isochoric invariant plus kappa/2 (J - 1)^2 (seed 003 §2.2), the material of the mixed u-p formulation.")
+                  .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split"}).require());
   s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
   s.push_back(key("material[].nu", K::real, "Poisson's ratio (with E), -1 < nu < 0.5.").above(-1).below(0.5));
   s.push_back(key("material[].K", K::real, "Bulk modulus (with G).").above(0));
