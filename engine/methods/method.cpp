@@ -2,15 +2,17 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/methods/fem_method.hpp"
+#include "engine/methods/mpm_method.hpp"
 
 namespace loom {
 
 std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options) {
   switch (scene.scene.method) {
     case Method::fem: return std::make_unique<FemRun>(scene, options);
+    case Method::mpm: return std::make_unique<MpmRun>(scene, options);
     default: break;
   }
-  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem)");
+  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, mpm)");
 }
 
 }  // namespace loom

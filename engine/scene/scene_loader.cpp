@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/triangle_rules.hpp"
 #include "engine/scene/expression.hpp"
 #include "engine/scene/overrides.hpp"
 #include "engine/scene/schema_validator.hpp"
@@ -84,8 +85,12 @@ class Loader {
     for (const auto& b : root_.array("boundary")) read_boundary(s, b);
     s.body_force = read_vector(root_.table("body_force"), diag_);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
+    const auto grid = root_.table("grid");
+    s.grid.present = grid.present();
+    if (grid.present()) read_mesh(grid, s.grid.mesh);
     read_output(s);
     check_mass(s);
+    check_method(s);
     return s;
   }
 
@@ -97,7 +102,8 @@ class Loader {
     const std::string m = t.string("method");
     s.scene.method = pick<Method>(m, {{"fem", Method::fem}, {"pfem", Method::pfem}, {"es_pfem", Method::es_pfem},
                                       {"mpm", Method::mpm}, {"mpm_fem", Method::mpm_fem}});
-    if (s.scene.method != Method::fem) t.error("method", "method \"" + m + "\" is not implemented yet (available: fem)");
+    if (s.scene.method != Method::fem && s.scene.method != Method::mpm)
+      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, mpm)");
     s.scene.dimension = int(t.integer("dimension"));
     s.scene.units = t.string("units");
     s.scene.description = t.string("description");
@@ -105,7 +111,12 @@ class Loader {
 
   void read_time(SceneSpec& s) {
     const auto t = root_.table("time");
-    s.time.integrator = pick<Integrator>(t.string("integrator"), {{"static", Integrator::static_}, {"euler_backward", Integrator::euler_backward}});
+    s.time.integrator = pick<Integrator>(t.string("integrator"), {{"static", Integrator::static_}, {"euler_backward", Integrator::euler_backward},
+                                                                  {"newmark", Integrator::newmark}});
+    s.time.initial_acceleration = pick<InitialAcceleration>(t.string("initial_acceleration"), {{"zero", InitialAcceleration::zero},
+                                                                                               {"equilibrium", InitialAcceleration::equilibrium}});
+    if (t.has("initial_acceleration") && s.time.integrator != Integrator::newmark)
+      t.error("initial_acceleration", "initial_acceleration is used by integrator = \"newmark\" only");
     s.time.dt = t.real("dt");
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
@@ -139,6 +150,10 @@ class Loader {
       if (!t.has("E")) t.error("nu", "nu needs E");
       if (!t.has("nu")) t.error("E", "E needs nu");
       m.E = t.real("E"), m.nu = t.real("nu");
+      // nu = 1/2: kappa and lambda are infinite (IEEE inf); only the mixed u-p formulation takes it.
+      if (m.nu == 0.5 && m.model != MaterialModel::neo_hooke_split)
+        t.error("nu", "nu = 0.5 (incompressible) needs model = \"neo_hooke_split\" and element = \"p1p1_up\" (method mpm); "
+                      "other models must be in (-1, 0.5)");
       m.mu = m.E / (2 * (1 + m.nu));                            // seed 000 eq 49
       m.lambda = m.E * m.nu / ((1 + m.nu) * (1 - 2 * m.nu));
       m.G = m.mu, m.K = m.lambda + 2 * m.mu / 3;                 // eq 50
@@ -164,7 +179,9 @@ class Loader {
     b.material = find_by_name(s.materials, mat);
     if (t.has("material") && b.material == kNoIndex)
       t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
-    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi}});
+    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi},
+                                                        {"p1p1_up", Formulation::p1p1_up}});
+    read_mpm_body(s, t, b);
     if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&
         s.materials[std::size_t(b.material)].model == MaterialModel::linear_elastic) {
       // phi is tied to det F (eq 26): a finite-strain constraint that a small-strain law cannot honour
@@ -183,8 +200,31 @@ class Loader {
       if (!err.empty()) t.error("alpha_s", "invalid formula \"" + text + "\" (it may use K, G, E, nu): " + err);
       else if (!(b.alpha_s >= 0.0)) t.error("alpha_s", "must be >= 0, got " + std::to_string(b.alpha_s));
     }
-    const auto mesh = t.table("mesh");
-    MeshSpec& m = b.mesh;
+    read_mesh(t.table("mesh"), b.mesh);
+    b.body_force = read_vector(t.table("body_force"), diag_);
+    s.bodies.push_back(b);
+  }
+
+  // Options of method mpm on a body (seed 003): particles, and the stabilisation of p1p1_up.
+  void read_mpm_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
+    b.particles_per_cell = int(t.integer("particles_per_cell"));
+    if (t.has("particles_per_cell") && !has_triangle_rule(b.particles_per_cell)) {
+      std::string sizes;
+      for (int n : triangle_rule_sizes()) sizes += (sizes.empty() ? "" : ", ") + std::to_string(n);
+      t.error("particles_per_cell", "no triangle rule with " + std::to_string(b.particles_per_cell) + " points (available: " + sizes + ")");
+    }
+    b.stabilisation = pick<Stabilisation>(t.string("stabilisation"), {{"none", Stabilisation::none}, {"ppp", Stabilisation::ppp},
+                                                                      {"asgs", Stabilisation::asgs}, {"osgs", Stabilisation::osgs}});
+    b.tau_c1 = t.real("tau_c1");
+    b.tau_c2 = t.real("tau_c2");
+    for (const char* k : {"stabilisation", "tau_c1", "tau_c2"})
+      if (t.has(k) && b.element != Formulation::p1p1_up) t.error(k, std::string(k) + " is only used by element = \"p1p1_up\"");
+    if (b.element == Formulation::p1p1_up && b.material != kNoIndex &&
+        s.materials[std::size_t(b.material)].model != MaterialModel::neo_hooke_split)
+      t.error("element", "p1p1_up takes the pressure of a deviatoric/volumetric split: use it with model = \"neo_hooke_split\"");
+  }
+
+  void read_mesh(const TableReader& mesh, MeshSpec& m) {
     m.where = mesh.where();
     m.generator = pick<MeshGenerator>(mesh.string("generator"), {{"rectangle", MeshGenerator::rectangle}, {"cooks_membrane", MeshGenerator::cooks_membrane}});
     const auto div = mesh.ivec2("divisions");
@@ -204,8 +244,6 @@ class Loader {
       for (const char* k : {"origin", "size"})
         if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"cooks_membrane\" (use scale)");
     }
-    b.body_force = read_vector(t.table("body_force"), diag_);
-    s.bodies.push_back(b);
   }
 
   void read_boundary(SceneSpec& s, const TableReader& t) {
@@ -226,6 +264,8 @@ class Loader {
     if (region.has("box") && (box[0].x() > box[1].x() || box[0].y() > box[1].y()))
       region.error("box", "the first corner must be the lower-left one ([[xmin, ymin], [xmax, ymax]])");
     b.displacement = read_vector(t.table("displacement"), diag_);
+    b.pressure = t.expression("pressure");
+    check_expression(b.pressure, diag_);
     const auto traction = t.table("traction");
     b.has_traction = traction.present();
     b.traction = read_vector(traction, diag_);
@@ -243,7 +283,8 @@ class Loader {
     if (p.name.find_first_of(",\"\n") != std::string::npos) t.error("name", "a probe name may not hold commas, quotes or newlines");
     const std::string kind = t.string("kind");
     p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
-                                    {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump}});
+                                    {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump}, {"energy", ProbeKind::energy}});
+    p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
     p.max = t.string("bound") == "max";
     p.component = t.string("component") == "y" ? 1 : 0;
     auto needs = [&](const char* key) {
@@ -277,6 +318,7 @@ class Loader {
         break;
       }
       case ProbeKind::newton:
+      case ProbeKind::energy:
         unused("boundary"), unused("component"), unused("at"), unused("body");
         break;
       case ProbeKind::extent:
@@ -297,6 +339,7 @@ class Loader {
       }
     }
     if (p.kind != ProbeKind::extent) unused("bound");
+    if (p.kind != ProbeKind::energy) unused("energy");
     s.probes.push_back(p);
   }
 
@@ -320,6 +363,51 @@ class Loader {
       else if (global_force || body.body_force.x || body.body_force.y)
         diag_.error(mat.where, "material[" + std::to_string(body.material) + "].density",
                     "density must be > 0: a body force acts on body \"" + body.name + "\"");
+    }
+  }
+
+  // What each method implements; reported at the key that asks for more.
+  void check_method(const SceneSpec& s) {
+    const bool mpm = s.scene.method == Method::mpm;
+    const auto time = root_.table("time"), grid = root_.table("grid");
+    const auto bodies = root_.array("body"), boundaries = root_.array("boundary"), probes = root_.array("probe");
+    const auto materials = root_.array("material");
+    if (!mpm) {
+      if (grid.present()) root_.error("grid", "[grid] is used by method = \"mpm\" only");
+      if (s.time.integrator == Integrator::newmark) time.error("integrator", "newmark is implemented by method = \"mpm\" (fem: static or euler_backward)");
+      for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
+        if (s.bodies[b].element == Formulation::p1p1_up) bodies[b].error("element", "p1p1_up is an MPM grid formulation: use method = \"mpm\"");
+        if (bodies[b].has("particles_per_cell")) bodies[b].error("particles_per_cell", "particles_per_cell is used by method = \"mpm\" only");
+      }
+      for (std::size_t b = 0; b < boundaries.size() && b < s.boundaries.size(); ++b)
+        if (s.boundaries[b].pressure) boundaries[b].error("pressure", "a prescribed pressure needs method = \"mpm\" with element = \"p1p1_up\"");
+      for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k)
+        if (s.probes[k].kind == ProbeKind::energy) probes[k].error("kind", "energy probes are implemented by method = \"mpm\"");
+      return;
+    }
+    if (!grid.present()) root_.error("", "missing table [grid] (method = \"mpm\" needs a background grid)");
+    if (s.time.integrator == Integrator::euler_backward) time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
+    if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass (seed 003 §5)");
+    if (s.bodies.size() > 1) bodies[1].error("", "method mpm supports one body for now");
+    for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
+      const auto e = s.bodies[b].element;
+      if (e != Formulation::p1 && e != Formulation::p1p1_up)
+        bodies[b].error("element", "method mpm takes element = \"p1\" (displacement) or \"p1p1_up\" (mixed, seed 003)");
+      const Index m = s.bodies[b].material;
+      if (m != kNoIndex && e != Formulation::p1p1_up && s.materials[std::size_t(m)].nu == 0.5)
+        materials[std::size_t(m)].error("nu", "nu = 0.5 (incompressible) needs element = \"p1p1_up\" on body \"" + s.bodies[b].name + "\"");
+    }
+    const bool mixed = !s.bodies.empty() && s.bodies[0].element == Formulation::p1p1_up;
+    for (std::size_t b = 0; b < boundaries.size() && b < s.boundaries.size(); ++b)
+      if (s.boundaries[b].pressure && !mixed) boundaries[b].error("pressure", "a prescribed pressure needs element = \"p1p1_up\"");
+    for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k)
+      if (s.probes[k].kind == ProbeKind::pressure_jump) probes[k].error("kind", "pressure_jump probes are implemented by method = \"fem\"");
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      const Index m = s.bodies[b].material;
+      if (m != kNoIndex && !(s.materials[std::size_t(m)].density > 0) && !(s.time.integrator != Integrator::static_))
+        diag_.error(s.materials[std::size_t(m)].where, "material[" + std::to_string(m) + "].density",
+                    "method mpm: particles carry mass = density x volume, and the grid projects with it: density must be > 0 (body \"" +
+                        s.bodies[b].name + "\")");
     }
   }
 

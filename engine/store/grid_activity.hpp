@@ -15,6 +15,7 @@ struct GridActivity {
   std::vector<char> cell_active;  // per grid cell
   std::vector<char> node_active;  // per grid node
   std::vector<Index> active_cells;  // ascending
+  std::vector<Index> active_index;  // per grid cell: its position in active_cells (the scatter entry), or kNoIndex
   std::vector<Index> active_by_colour;  // active cells grouped by the grid's colours
   std::vector<Index> colour_offsets;    // n_colours + 1 into active_by_colour
   std::uint64_t version = 0;  // incremented whenever the active set changes
