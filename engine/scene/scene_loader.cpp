@@ -190,7 +190,7 @@ class Loader {
     }
     if (b.element != Formulation::p1p1_uphi && t.has("alpha_s")) {
       t.error("alpha_s", "alpha_s is only used by element = \"p1p1_uphi\"");
-    } else if (b.material != kNoIndex) {
+    } else if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex) {
       // seed 000 eq 30: a stress-like factor; a formula is evaluated in the body's material constants.
       const auto& material = s.materials[std::size_t(b.material)];
       const auto spec = t.expression("alpha_s");

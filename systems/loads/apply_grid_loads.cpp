@@ -54,13 +54,14 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
   // 2. Body forces at the particles.
   const Index n = particles.X.size();
   bc.particle_body_force.resize(std::size_t(n));
-  for_each_index(n, [&](Index p) {
+  // Expressions are not thread-safe (muparser): evaluated serially, once per step.
+  for (Index p = 0; p < n; ++p) {
     const auto& e = bc.body_force[std::size_t(particles.body[p])];
     Vec2 b = Vec2::Zero();
     for (int d = 0; d < 2; ++d)
       if (e[std::size_t(d)] != kNoIndex) b[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, particles.X[p].x(), particles.X[p].y());
     bc.particle_body_force[std::size_t(p)] = b;
-  });
+  }
   for_each_occupied_cell_by_colour(grid, particle_loc, [&](Index c) {
     const Index* pts = particle_loc.points_in(c);
     for (Index k = 0; k < particle_loc.count_in(c); ++k) {
