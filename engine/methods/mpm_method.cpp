@@ -36,7 +36,7 @@ std::string file_stem(const std::string& name) {
 MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
-  probe_plan_ = plan_particle_probes(scene_, m_.particles);
+  probe_plan_ = plan_particle_probes(scene_);
   build_graph();
 }
 
@@ -53,6 +53,8 @@ void MpmRun::build_graph() {
   g.name_store(&m_.particle_loc, "particle_locations");
   g.name_store(&m_.traction_points, "traction_points");
   g.name_store(&m_.traction_loc, "traction_point_locations");
+  g.name_store(&m_.probe_points, "probe_points");
+  g.name_store(&m_.probe_loc, "probe_point_locations");
   g.name_store(&m_.materials, "materials");
   g.name_store(&m_.bc, "grid_conditions");
   g.name_store(&m_.system, "linear_system");
@@ -63,6 +65,7 @@ void MpmRun::build_graph() {
   // 1. Initialisation phase (Algorithm 1 lines 5-15).
   g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
   g.add_system("locate_traction_points", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.traction_points, m_.traction_loc);
+  g.add_system("locate_probe_points", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.probe_points, m_.probe_loc);
   g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
   g.add_system("project_to_grid", &project_to_grid, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
   g.add_system("apply_grid_loads", &apply_grid_loads, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
@@ -77,7 +80,12 @@ void MpmRun::build_graph() {
   g.run_if(interpolate, &status_, [this] { return status_.converged; });
   const auto move = g.add_system("move_traction_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.traction_loc, m_.traction_points);
   g.run_if(move, &status_, [this] { return status_.converged; });
-  const auto probes = g.add_node("probes", {{&m_.particles, &m_.materials, &m_.system, &m_.bc}, {&probe_writer_}}, [this] { probes_node(); });
+  const auto tracers = g.add_system("move_probe_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.probe_loc, m_.probe_points);
+  g.run_if(tracers, &status_, [this] { return status_.converged; });
+  const auto probes = g.add_node("probes",
+                                 {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
+                                  {&probe_writer_}},
+                                 [this] { probes_node(); });
   g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
   const auto output = g.add_node("output", {{&m_.particles, &m_.materials, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.particle_loc}, {&writer_}},
                                  [this] { output_node(); }, "snapshot here; the VTK files are written while the next step runs");
@@ -102,7 +110,8 @@ void MpmRun::newton_node() {
 }
 
 void MpmRun::probes_node() {
-  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.system, m_.bc, status_.step_iterations, probe_values_);
+  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView{m_.grid, m_.activity, m_.grid_nodes},
+                           m_.system, m_.bc, status_.step_iterations, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 

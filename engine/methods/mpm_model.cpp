@@ -118,6 +118,8 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   particle_loc.F.use();
   traction_points.X.use(), traction_points.u.use(), traction_points.volume.use(), traction_points.body.use();
   traction_loc.entity = "traction point";
+  probe_points.X.use(), probe_points.u.use();
+  probe_loc.entity = "probe point";
 
   // 2. Grid, particles, traction points.
   const MeshSpec& gm = scene.grid.mesh;
@@ -135,6 +137,11 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   build_material_points(scene, particles);
   bc.per_node = mixed ? 3 : 2;
   build_traction_points(scene, traction_points, bc);
+  std::vector<Vec2> tracers;
+  for (const auto& p : scene.probes)
+    if (p.kind == ProbeKind::point) tracers.push_back(p.at);
+  probe_points.resize(Index(tracers.size()));
+  for (Index k = 0; k < probe_points.X.size(); ++k) probe_points.X[k] = tracers[std::size_t(k)];
   build_grid_conditions(scene, grid_nodes, layout, bc);
   bc.increments = true;
   bc.target = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
@@ -150,6 +157,7 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   try {
     locate_points(ctx, layout, grid, grid_nodes, particles, particle_loc);
     locate_points(ctx, layout, grid, grid_nodes, traction_points, traction_loc);
+    locate_points(ctx, layout, grid, grid_nodes, probe_points, probe_loc);
   } catch (const RunError& e) {
     std::ostringstream os;
     os << gm.where << ": error: grid: the body does not fit in the background grid at t = 0: " << e.what();

@@ -36,6 +36,9 @@ struct MpmModel {
   PointLocations particle_loc;
   Points<2> traction_points;
   PointLocations traction_loc;
+  // Point probes follow massless tracer points that move with the grid like the traction points.
+  Points<2> probe_points;
+  PointLocations probe_loc;
 
   std::vector<BodyMaterial> materials;
   BoundaryConditions<2> bc;  // on the grid's dofs

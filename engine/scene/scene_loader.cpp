@@ -401,7 +401,8 @@ class Loader {
     for (std::size_t b = 0; b < boundaries.size() && b < s.boundaries.size(); ++b)
       if (s.boundaries[b].pressure && !mixed) boundaries[b].error("pressure", "a prescribed pressure needs element = \"p1p1_up\"");
     for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k)
-      if (s.probes[k].kind == ProbeKind::pressure_jump) probes[k].error("kind", "pressure_jump probes are implemented by method = \"fem\"");
+      if (s.probes[k].kind == ProbeKind::pressure_jump && !mixed)
+        probes[k].error("kind", "method mpm measures pressure jumps on the grid pressure of element = \"p1p1_up\"");
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
       const Index m = s.bodies[b].material;
       if (m != kNoIndex && !(s.materials[std::size_t(m)].density > 0) && !(s.time.integrator != Integrator::static_))

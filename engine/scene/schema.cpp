@@ -150,7 +150,8 @@ std::vector<KeySpec> build_schema() {
                   "extent: largest (bound = max) or smallest coordinate of a body's nodes along `component`; "
                   "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation); "
                   "energy (method mpm): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles, or their total. "
-                  "Method mpm: point probes follow the particle nearest to `at`, extent probes the particles.")
+                  "Method mpm: point probes follow a tracer point that starts at `at` and moves with the grid (the material "
+                  "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides.")
                   .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "energy"}).require());
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
   s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe.").one_of({"x", "y"}));

@@ -23,26 +23,31 @@ double elastic_energy(const BodyMaterial& material, const Mat3& F, bool mixed, d
 
 }  // namespace
 
-ParticleProbePlan plan_particle_probes(const SceneSpec& scene, const Points<2>& particles) {
+ParticleProbePlan plan_particle_probes(const SceneSpec& scene) {
   ParticleProbePlan plan;
   plan.probes = scene.probes;
-  for (const auto& p : scene.probes) {
-    Index best = kNoIndex;
-    if (p.kind == ProbeKind::point) {
-      double best_d = std::numeric_limits<double>::max();
-      for (Index i = 0; i < particles.X.size(); ++i) {
-        const double d = (particles.X[i] - p.at).squaredNorm();
-        if (d < best_d) best_d = d, best = i;
-      }
-    }
-    plan.particle.push_back(best);
-  }
+  Index n_tracers = 0;
+  for (const auto& p : scene.probes) plan.tracer.push_back(p.kind == ProbeKind::point ? n_tracers++ : kNoIndex);
   return plan;
 }
 
+double pressure_jump(const GridView& g) {
+  double sum = 0.0;
+  long long n = 0;
+  for (Index c : g.activity.active_cells)
+    for (int a = 0; a < 3; ++a) {
+      const Index other = g.grid.neighbour[3 * c + a];
+      if (other != kNoIndex && g.activity.cell_active[std::size_t(other)] && other < c) continue;  // counted from `other`
+      sum += std::abs(g.nodes.p[g.grid.node(c, (a + 1) % 3)] - g.nodes.p[g.grid.node(c, (a + 2) % 3)]);
+      ++n;
+    }
+  return n ? sum / double(n) : 0.0;
+}
+
 void evaluate_particle_probes(const StepContext&, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                              const Points<2>& particles, const LinearSystem& system, const BoundaryConditions<2>& bc,
-                              int newton_iterations, std::vector<double>& values) {
+                              const Points<2>& particles, const Points<2>& probe_points, const GridView& grid,
+                              const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                              std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
   const bool mixed = particles.pressure.used();
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
@@ -57,7 +62,7 @@ void evaluate_particle_probes(const StepContext&, const ParticleProbePlan& plan,
         values[k] = sum;
         break;
       }
-      case ProbeKind::point: values[k] = particles.u[plan.particle[k]][p.component]; break;
+      case ProbeKind::point: values[k] = probe_points.u[plan.tracer[k]][p.component]; break;
       case ProbeKind::newton: values[k] = newton_iterations; break;
       case ProbeKind::extent: {
         double e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
@@ -78,7 +83,7 @@ void evaluate_particle_probes(const StepContext&, const ParticleProbePlan& plan,
         values[k] = p.energy == EnergyPart::kinetic ? kinetic : p.energy == EnergyPart::elastic ? elastic : kinetic + elastic;
         break;
       }
-      case ProbeKind::pressure_jump: values[k] = kNaN; break;  // fem only (the loader rejects it for mpm)
+      case ProbeKind::pressure_jump: values[k] = grid.nodes.p.used() ? pressure_jump(grid) : kNaN; break;
     }
   }
 }
