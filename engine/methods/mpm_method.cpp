@@ -78,9 +78,9 @@ void MpmRun::build_graph() {
   // 3. Convective phase (lines 44-49), on a converged state only.
   const auto interpolate = g.add_system("interpolate_to_particles", &interpolate_to_particles, m_.grid, m_.grid_nodes, m_.particle_loc, m_.particles);
   g.run_if(interpolate, &status_, [this] { return status_.converged; });
-  const auto move = g.add_system("move_traction_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.traction_loc, m_.traction_points);
+  const auto move = g.add_system("move_traction_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.traction_loc, m_.traction_points);
   g.run_if(move, &status_, [this] { return status_.converged; });
-  const auto tracers = g.add_system("move_probe_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.probe_loc, m_.probe_points);
+  const auto tracers = g.add_system("move_probe_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.probe_loc, m_.probe_points);
   g.run_if(tracers, &status_, [this] { return status_.converged; });
   const auto probes = g.add_node("probes",
                                  {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},

@@ -2,40 +2,10 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
+#include "systems/locate/locate_points.hpp"
 #include "systems/map/project_to_grid.hpp"
 
 namespace loom {
-namespace {
-
-Vec3 extended_shape_functions(const Cells& grid, const Nodes<2>& nodes, Index c, const Vec2& x) {
-  const Vec2 d = x - nodes.X[grid.node(c, 0)];
-  Vec3 N;
-  N[1] = grid.gradient[c].row(1).dot(d);
-  N[2] = grid.gradient[c].row(2).dot(d);
-  N[0] = 1.0 - N[1] - N[2];
-  return N;
-}
-
-// The active cell next to cell c (sharing a side, then a corner) where x is the least outside.
-Index nearest_active_cell(const Cells& grid, const Nodes<2>& nodes, const GridActivity& act, Index c, const Vec2& x) {
-  Index best = kNoIndex;
-  double best_min = -1e300;
-  auto consider = [&](Index k) {
-    if (k == kNoIndex || !act.cell_active[std::size_t(k)]) return;
-    const double m = extended_shape_functions(grid, nodes, k, x).minCoeff();
-    if (m > best_min) best_min = m, best = k;
-  };
-  for (int a = 0; a < 3; ++a) consider(grid.neighbour[3 * c + a]);
-  if (best != kNoIndex) return best;
-  for (int a = 0; a < 3; ++a) {
-    const Index n = grid.neighbour[3 * c + a];
-    if (n == kNoIndex) continue;
-    for (int b = 0; b < 3; ++b) consider(grid.neighbour[3 * n + b]);
-  }
-  return best;
-}
-
-}  // namespace
 
 void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
                       const Points<2>& particles, const PointLocations& particle_loc, const Points<2>& traction_points,
@@ -79,17 +49,12 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
     Vec2 t = Vec2::Zero();
     for (int d = 0; d < 2; ++d)
       if (e[std::size_t(d)] != kNoIndex) t[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, X.x(), X.y());
-    Index c = traction_loc.cell[q];
-    Vec3 N = traction_loc.N[q];
-    if (!activity.cell_active[std::size_t(c)]) {
-      const Vec2 x = traction_points.position(q);
-      c = nearest_active_cell(grid, grid_nodes, activity, c, x);
-      LOOM_CHECK(c != kNoIndex, RunError,
-                 "traction point " << q << " (reference position (" << X.x() << ", " << X.y() << ")) at (" << x.x() << ", " << x.y()
-                                   << ") has no grid cell holding particles next to it at step " << ctx.step
-                                   << ": its load cannot reach the body");
-      N = extended_shape_functions(grid, grid_nodes, c, x);
-    }
+    const Vec2 x = traction_points.position(q);
+    Vec3 N;
+    const Index c = host_active_cell(grid, grid_nodes, activity, traction_loc.cell[q], x, N);
+    LOOM_CHECK(c != kNoIndex, RunError,
+               "traction point " << q << " (reference position (" << X.x() << ", " << X.y() << ")) at (" << x.x() << ", " << x.y()
+                                 << ") has no grid cell holding particles next to it at step " << ctx.step << ": its load cannot reach the body");
     const Vec2 f = traction_points.volume[q] * t;
     for (int a = 0; a < 3; ++a)
       for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];

@@ -76,6 +76,33 @@ Index walk(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, c
 
 }  // namespace
 
+Index host_active_cell(const Cells& grid, const Nodes<2>& nodes, const GridActivity& act, Index c, const Vec2& x, Vec3& N) {
+  if (act.cell_active[std::size_t(c)]) {
+    N = barycentric(grid, nodes, c, x);
+    return c;
+  }
+  // Breadth-first over side neighbours, four rings: covers every cell sharing a corner with c.
+  Index visited[128];
+  int n_visited = 0, begin = 0;
+  visited[n_visited++] = c;
+  Index best = kNoIndex;
+  double best_min = -1e300;
+  for (int ring = 0; ring < 4 && best == kNoIndex; ++ring) {
+    const int end = n_visited;
+    for (int k = begin; k < end; ++k)
+      for (int a = 0; a < 3; ++a) {
+        const Index n = grid.neighbour[3 * visited[k] + a];
+        if (n == kNoIndex || std::find(visited, visited + n_visited, n) != visited + n_visited || n_visited == 128) continue;
+        visited[n_visited++] = n;
+        if (!act.cell_active[std::size_t(n)]) continue;
+        const Vec3 Nn = barycentric(grid, nodes, n, x);
+        if (Nn.minCoeff() > best_min) best_min = Nn.minCoeff(), best = n, N = Nn;
+      }
+    begin = end;
+  }
+  return best;
+}
+
 Index find_cell(const GridLayout& layout, const Cells& grid, const Nodes<2>& grid_nodes, const Vec2& x, Index hint, Vec3& N) {
   if (layout.structured) return find_structured(layout, grid, grid_nodes, x, N);
   if (hint != kNoIndex) {

@@ -7,6 +7,7 @@
 
 #include "engine/graph/step_context.hpp"
 #include "engine/store/cells.hpp"
+#include "engine/store/grid_activity.hpp"
 #include "engine/store/grid_layout.hpp"
 #include "engine/store/nodes.hpp"
 #include "engine/store/point_locations.hpp"
@@ -16,6 +17,14 @@ namespace loom {
 
 void locate_points(const StepContext& ctx, const GridLayout& layout, const Cells& grid, const Nodes<2>& grid_nodes,
                    const Points<2>& points, PointLocations& loc);
+
+// For a point that follows the body without being a material point (traction and probe points): the active
+// cell that carries it, and the linear shape functions of that cell at x. Its own cell when active; else
+// the active cell nearest to it (the first ring of side neighbours, up to four, that holds one) where x
+// is the least outside,
+// with the shape functions extended linearly beyond the cell (they still sum to one and reproduce linear
+// fields, so a force keeps its resultant and moment). kNoIndex if no active cell is near.
+Index host_active_cell(const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity, Index cell, const Vec2& x, Vec3& N);
 
 // The cell holding x (kNoIndex if none) and the barycentric coordinates there; `hint` is a cell to start
 // a walk from (kNoIndex: none). Exposed for tests and benchmarks.

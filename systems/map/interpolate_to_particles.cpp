@@ -1,6 +1,7 @@
 #include "systems/map/interpolate_to_particles.hpp"
 
 #include "engine/core/parallel.hpp"
+#include "systems/locate/locate_points.hpp"
 
 namespace loom {
 namespace {
@@ -38,10 +39,12 @@ void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const N
   });
 }
 
-void move_with_grid(const StepContext&, const Cells& grid, const Nodes<2>& grid_nodes, const PointLocations& loc,
-                    Points<2>& points) {
+void move_with_grid(const StepContext&, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
+                    const PointLocations& loc, Points<2>& points) {
   for_each_index(points.X.size(), [&](Index p) {
-    points.u[p] += interpolate<Vec2>(grid.cell_nodes(loc.cell[p]), loc.N[p], grid_nodes.u);
+    Vec3 N;
+    const Index c = host_active_cell(grid, grid_nodes, activity, loc.cell[p], points.position(p), N);
+    if (c != kNoIndex) points.u[p] += interpolate<Vec2>(grid.cell_nodes(c), N, grid_nodes.u);
   });
 }
 

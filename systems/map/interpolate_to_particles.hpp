@@ -11,6 +11,7 @@
 
 #include "engine/graph/step_context.hpp"
 #include "engine/store/cells.hpp"
+#include "engine/store/grid_activity.hpp"
 #include "engine/store/nodes.hpp"
 #include "engine/store/point_locations.hpp"
 #include "engine/store/points.hpp"
@@ -22,8 +23,10 @@ inline constexpr double kNewmarkBeta = 0.25, kNewmarkGamma = 0.5;  // seed 003 Â
 void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes,
                               const PointLocations& loc, Points<2>& particles);
 
-// Moves points that only follow the body (traction points): u += sum_I N_I du_I.
-void move_with_grid(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const PointLocations& loc,
-                    Points<2>& points);
+// Moves points that only follow the body (traction and probe points): u += sum_I N_I du_I over their host
+// active cell (locate's host_active_cell; the grid is zero on inactive nodes). A point with no active cell
+// near it stays where it is.
+void move_with_grid(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
+                    const PointLocations& loc, Points<2>& points);
 
 }  // namespace loom
