@@ -385,7 +385,7 @@ class Loader {
         if (s.probes[k].kind == ProbeKind::energy) probes[k].error("kind", "energy probes are implemented by method = \"mpm\"");
       return;
     }
-    if (!grid.present()) root_.error("", "missing table [grid] (method = \"mpm\" needs a background grid)");
+    if (!grid.present()) root_.table("scene").error("method", "method = \"mpm\" needs a background grid: add a [grid] table");
     if (s.time.integrator == Integrator::euler_backward) time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
     if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass (seed 003 §5)");
     if (s.bodies.size() > 1) bodies[1].error("", "method mpm supports one body for now");
