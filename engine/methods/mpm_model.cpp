@@ -109,7 +109,7 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   grid_nodes.lumped_mass.use();
   for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic);
   grid_nodes.p.use(mixed);
-  grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs);
+  grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs), grid_nodes.lumped_volume.use(osgs);
   for (auto* c : {&particles.X, &particles.u}) c->use();
   particles.mass.use(), particles.volume.use(), particles.F.use(), particles.body.use();
   particles.v.use(dynamic), particles.a.use(dynamic);

@@ -9,8 +9,6 @@ void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& 
                        const GridActivity& activity, const Points<2>& particles, const PointLocations& loc,
                        const BoundaryConditions<2>& bc, Nodes<2>& g) {
   const bool dynamic = ctx.scene->time.integrator == Integrator::newmark;
-  // The weights sum_p V_n N_I go to lumped_mass's companion: accumulate in proj_p's denominator locally.
-  std::vector<double> weight(std::size_t(g.size()), 0.0);
   for_each_index(g.size(), [&](Index i) { g.proj_u[i].setZero(), g.proj_p[i] = 0.0; });
   for (std::size_t k = 0; k + 1 < activity.colour_offsets.size(); ++k) {
     const Index* cells = activity.active_by_colour.data() + activity.colour_offsets[k];
@@ -41,7 +39,6 @@ void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& 
         const double Rp = (J - 1.0) - N.dot(p) * ik;
         for (int i = 0; i < 3; ++i) {
           const double w = Vn * N[i];
-          weight[std::size_t(corner[i])] += w;
           g.proj_u[corner[i]] += w * Ru;
           g.proj_p[corner[i]] += w * Rp;
         }
@@ -49,7 +46,7 @@ void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& 
     });
   }
   for_each_index(g.size(), [&](Index i) {
-    const double w = weight[std::size_t(i)];
+    const double w = g.lumped_volume[i];  // sum_p V_n N_I, from project_to_grid
     if (w > 0.0) g.proj_u[i] /= w, g.proj_p[i] /= w;
   });
 }

@@ -2,7 +2,7 @@
 // linear space, with the material points as quadrature and the lumped projection matrix,
 //   P_u,I = sum_p V_n N_I R_u(x_p) / sum_p V_n N_I,   R_u = rho (b - a_h) + grad p_h,
 //   P_p,I = sum_p V_n N_I R_p(x_p) / sum_p V_n N_I,   R_p = (J - 1) - p_h / kappa,
-// of the current Newton iterate. The assembly uses them as data (P_h^perp[f^k] ~ f^k - P_h[f^(k-1)]):
+// of the current Newton iterate (the lumped matrix sum_p V_n N_I is project_to_grid's lumped_volume). The assembly uses them as data (P_h^perp[f^k] ~ f^k - P_h[f^(k-1)]):
 // Newton then converges linearly near the solution, as the seed reports (8 iterations against ASGS's 4).
 #pragma once
 

@@ -3,6 +3,7 @@
 // mass and the mass-weighted projections of the particles' velocity, acceleration, pressure and (OSGS)
 // residual projections:
 //   m_I = sum_p N_I(x_p) m_p,   v_I = sum_p N_I(x_p) m_p v_p / m_I,   likewise a_I, p_I, P_u, P_p.
+// With OSGS also the lumped projection matrix sum_p N_I V_p^n (lumped_volume) of project_residuals.
 // Mass and momentum are conserved exactly (sum_I N_I = 1). Cells are visited colour by colour and the
 // particles of a cell in index order, so the sums do not depend on the thread count. Columns the grid
 // does not use (velocities of static runs, pressure of displacement-only runs) are skipped.
