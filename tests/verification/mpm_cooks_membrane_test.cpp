@@ -3,7 +3,7 @@
 // u_y(A) of PPP, ASGS and OSGS is within 1.5 % of the reference 0.2758 (REFERENCES.md, nu = 0.5; the seed:
 // 0.275, its Fig 4), ASGS converges quadratically (the seed: about 4 Newton iterations), and without
 // stabilisation the nodal pressure oscillates from node to node (seed Fig 5a): its mean jump across grid
-// sides is more than a hundred times the stabilised ones'. tools/study/mpm_cooks_static.py runs the whole
+// sides is more than a hundred times the stabilised ones'. tools/mpm_studies/mpm_cooks_static.py runs the whole
 // refinement series (docs/mpm/cooks_static.*).
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 //     error that OSGS projects away. Errors are integrated with a degree-6 rule on every grid cell; the
 //     pressure is compared up to its mean (pinned at one corner, it is fixed up to a constant). OSGS
 //     iterates its lagged projections to the tolerance (linear convergence, 45-80 iterations at 1e-10).
-// With LOOM_MMS_CSV=<file> the table is also written there (tools/study/mpm_mms.py plots it).
+// With LOOM_MMS_CSV=<file> the table is also written there (tools/mpm_studies/mpm_mms.py plots it).
 #include <gtest/gtest.h>
 
 #include <cmath>
