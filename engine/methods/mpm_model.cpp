@@ -157,10 +157,27 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   try {
     locate_points(ctx, layout, grid, grid_nodes, particles, particle_loc);
     locate_points(ctx, layout, grid, grid_nodes, traction_points, traction_loc);
-    locate_points(ctx, layout, grid, grid_nodes, probe_points, probe_loc);
   } catch (const RunError& e) {
     std::ostringstream os;
     os << gm.where << ": error: grid: the body does not fit in the background grid at t = 0: " << e.what();
+    throw InputError(os.str());
+  }
+  for (std::size_t k = 0, tracer = 0; k < scene.probes.size(); ++k) {  // a probe outside the grid: its own key
+    if (scene.probes[k].kind != ProbeKind::point) continue;
+    const Vec2 at = probe_points.X[Index(tracer++)];
+    Vec3 N;
+    if (find_cell(layout, grid, grid_nodes, at, kNoIndex, N) == kNoIndex) {
+      std::ostringstream os;
+      os << scene.probes[k].where << ": error: probe[" << k << "].at: (" << at.x() << ", " << at.y()
+         << ") is outside the background grid (a point probe follows the material point at `at`)";
+      throw InputError(os.str());
+    }
+  }
+  try {
+    locate_points(ctx, layout, grid, grid_nodes, probe_points, probe_loc);
+  } catch (const RunError& e) {
+    std::ostringstream os;
+    os << gm.where << ": error: grid: a probe point is outside the background grid at t = 0: " << e.what();
     throw InputError(os.str());
   }
   activate_grid(ctx, grid, particle_loc, bc, activity, system);
