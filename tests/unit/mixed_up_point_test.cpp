@@ -1,6 +1,7 @@
 // systems/assemble/elements/mixed_up_point: the tangent of the mixed u-p material-point kernel (seed 003
 // eqs 16-26) is the derivative of its residual, checked by central finite differences over the nine
-// local dofs, for the Galerkin, ASGS and OSGS forms, static and dynamic, compressible and incompressible;
+// local dofs, for the Galerkin, ASGS and OSGS forms, static and dynamic, compressible and incompressible
+// (OSGS: with the pressure part of the projected R_p following the pressure, see residual());
 // the Galerkin coupling blocks are each other's negative transpose (B = B*, eq 18); PPP annihilates
 // constant pressures.
 #include <gtest/gtest.h>
@@ -44,9 +45,12 @@ PointSetup random_setup(unsigned seed) {
   return s;
 }
 
+// OSGS: the projection P_p follows the pressure term of R_p, P_p,a -= (p_a - p_a^0) / kappa, as the lumped
+// projection of the linear field p_h / kappa nearly does; the OSGS tangent leaves that term out.
 UpVector residual(const NeoHookeSplit& m, const UpStabilisation& st, PointSetup s, const UpVector& dofs) {
   for (int a = 0; a < 3; ++a) {
     s.cell.du.row(a) << dofs[3 * a], dofs[3 * a + 1];
+    if (st.projected) s.cell.proj_p[a] -= m.inv_kappa * (dofs[3 * a + 2] - s.cell.p[a]);
     s.cell.p[a] = dofs[3 * a + 2];
   }
   s.cell.a = s.a0 + st.c_a * s.cell.du;
