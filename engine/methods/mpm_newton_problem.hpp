@@ -1,6 +1,7 @@
 // The Newton problem of the mpm recipe (seed 003 Algorithm 1 phase 2, lines 17-37): binds the driver's
 // operations to the grid systems. OSGS recomputes the residual projections from the current iterate before
-// every assembly but the first of a step, which uses the projections the particles carried (line 20).
+// every assembly but the first of a step, which uses the projections the particles carried (line 20),
+// and, since its tangent leaves their derivative out, mixes the Newton increments (anderson_mixing.hpp).
 #pragma once
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "engine/drivers/newton.hpp"
 #include "engine/graph/step_context.hpp"
 #include "engine/linalg/linear_solver.hpp"
+#include "engine/methods/anderson_mixing.hpp"
 #include "engine/methods/mpm_model.hpp"
 #include "systems/assemble/assemble_grid_system.hpp"
 #include "systems/map/project_residuals.hpp"
@@ -34,8 +36,15 @@ class MpmNewtonProblem final : public NonlinearProblem {
                .inverted_cells == 0;
   }
   double residual_norm() const override { return m_.system.residual.norm(); }
-  bool solve() override { return solve_grid_step(m_.grid_nodes, m_.bc, solver_, m_.system, timers_) == LinearSolveStatus::ok; }
-  void update(double step) override { update_grid_iterate(ctx_, step, m_.system, m_.grid_nodes); }
+  bool solve() override {
+    if (solve_grid_step(m_.grid_nodes, m_.bc, solver_, m_.system, timers_) != LinearSolveStatus::ok) return false;
+    if (m_.osgs) mix_increment();
+    return true;
+  }
+  void update(double step) override {
+    applied_ += step;
+    update_grid_iterate(ctx_, step, m_.system, m_.grid_nodes);
+  }
   double increment_norm() const override { return m_.system.increment.norm(); }
   double step_change_norm() const override {
     double s = 0.0;
@@ -59,12 +68,25 @@ class MpmNewtonProblem final : public NonlinearProblem {
   }
 
  private:
+  // OSGS: Anderson mixing of the free dofs' increments (the prescribed ones are applied as solved).
+  void mix_increment() {
+    LinearSystem& sys = m_.system;
+    const Eigen::VectorXd mixed = anderson_.mix(sys.increment, applied_);
+    applied_ = 0.0;
+    const DofMap& dofs = sys.dofs;
+    for (Index dof = 0; dof < dofs.n_dofs(); ++dof)
+      if (dofs.kind[std::size_t(dof)] == DofKind::free) sys.increment_full[dof] = mixed[dofs.equation[std::size_t(dof)]];
+    sys.increment = mixed;
+  }
+
   const StepContext& ctx_;
   MpmModel& m_;
   LinearSolve& solver_;
   Timers& timers_;
   bool inertia_;
   bool assembled_ = false;
+  AndersonMixing anderson_;
+  double applied_ = 0.0;  // multiple of the last increment added to the iterate since the last solve
 };
 
 }  // namespace loom
