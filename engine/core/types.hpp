@@ -18,6 +18,7 @@ using Vec = Eigen::Matrix<double, D, 1>;
 using Vec2 = Vec<2>;
 using Vec3 = Vec<3>;
 using Mat3 = Eigen::Matrix3d;
+using Mat32 = Eigen::Matrix<double, 3, 2>;  // one row per corner of a linear triangle: shape gradients
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 

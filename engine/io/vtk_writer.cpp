@@ -7,8 +7,10 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <filesystem>
@@ -28,15 +30,49 @@ vtkNew<vtkDoubleArray> to_vtk(const FrameArray& a) {
   return v;
 }
 
-}  // namespace
-
-void write_vtu(const std::string& path, const Frame& frame) {
+vtkNew<vtkPoints> to_vtk_points(const Frame& frame) {
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(frame.n_points());
   for (Index i = 0; i < frame.n_points(); ++i)
     points->SetPoint(i, frame.points[3 * std::size_t(i)], frame.points[3 * std::size_t(i) + 1], frame.points[3 * std::size_t(i) + 2]);
+  return points;
+}
 
+// Writes through `writer` to a temporary name, then renames (DESIGN §6).
+template <class Writer>
+void write_atomically(Writer& writer, const std::string& path) {
+  const std::string tmp = temporary_name(path);
+  writer->SetFileName(tmp.c_str());
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  writer->EncodeAppendedDataOff();
+  LOOM_CHECK(writer->Write() == 1, RunError, "VTK could not write " << tmp);
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  LOOM_CHECK(!ec, RunError, "cannot rename " << tmp << " to " << path << ": " << ec.message());
+}
+
+}  // namespace
+
+void write_vtp(const std::string& path, const Frame& frame) {
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(to_vtk_points(frame));
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(frame.n_points() + 1);
+  connectivity->SetNumberOfValues(frame.n_points());
+  for (Index i = 0; i <= frame.n_points(); ++i) offsets->SetValue(i, i);
+  for (Index i = 0; i < frame.n_points(); ++i) connectivity->SetValue(i, i);
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  cloud->SetVerts(verts);
+  for (const auto& a : frame.point_arrays) cloud->GetPointData()->AddArray(to_vtk(a));
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(cloud);
+  write_atomically(writer, path);
+}
+
+void write_vtu(const std::string& path, const Frame& frame) {
   vtkNew<vtkIdTypeArray> offsets, connectivity;
   offsets->SetNumberOfValues(frame.n_cells() + 1);
   offsets->SetValue(0, 0);
@@ -50,22 +86,13 @@ void write_vtu(const std::string& path, const Frame& frame) {
   for (Index c = 0; c < frame.n_cells(); ++c) types->SetValue(c, frame.cell_types[std::size_t(c)]);
 
   vtkNew<vtkUnstructuredGrid> grid;
-  grid->SetPoints(points);
+  grid->SetPoints(to_vtk_points(frame));
   grid->SetCells(types, cells);
   for (const auto& a : frame.point_arrays) grid->GetPointData()->AddArray(to_vtk(a));
   for (const auto& a : frame.cell_arrays) grid->GetCellData()->AddArray(to_vtk(a));
-
-  const std::string tmp = temporary_name(path);
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(tmp.c_str());
   writer->SetInputData(grid);
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  writer->EncodeAppendedDataOff();
-  LOOM_CHECK(writer->Write() == 1, RunError, "VTK could not write " << tmp);
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  LOOM_CHECK(!ec, RunError, "cannot rename " << tmp << " to " << path << ": " << ec.message());
+  write_atomically(writer, path);
 }
 
 }  // namespace loom

@@ -7,17 +7,23 @@
 
 namespace loom {
 
-void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, SparsePattern& pattern) {
+void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, SparsePattern& pattern,
+                   const std::vector<const std::vector<Index>*>& subsets) {
   const Index n_nodes = dofs.n_nodes();
   const int pn = dofs.per_node;
   // Node adjacency (including the node itself), sorted and unique per node.
   std::vector<std::vector<Index>> adjacent(static_cast<std::size_t>(n_nodes));
-  for (const Cells* cells : blocks)
-    for (Index c = 0; c < cells->size(); ++c) {
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    const Cells* cells = blocks[k];
+    const std::vector<Index>* subset = k < subsets.size() ? subsets[k] : nullptr;
+    const Index n_cells = subset ? Index(subset->size()) : cells->size();
+    for (Index s = 0; s < n_cells; ++s) {
+      const Index c = subset ? (*subset)[std::size_t(s)] : s;
       const Index* nodes = cells->cell_nodes(c);
       for (int a = 0; a < cells->stride; ++a)
         for (int b = 0; b < cells->stride; ++b) adjacent[std::size_t(nodes[a])].push_back(nodes[b]);
     }
+  }
   for (auto& list : adjacent) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -65,17 +71,19 @@ Index find_slot(const SparsePattern& pattern, Index row, Index col) {
   return it != end && *it == row ? Index(it - A.innerIndexPtr()) : kNoIndex;
 }
 
-void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter) {
+void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter,
+                   const std::vector<Index>* subset) {
   const int pn = dofs.per_node;
   const int nd = cells.stride * pn;
   const SparseMatrix& A = pattern.matrix;
+  const Index n_cells = subset ? Index(subset->size()) : cells.size();
   scatter.dofs_per_cell = nd;
-  scatter.slot.assign(std::size_t(cells.size()) * std::size_t(nd) * std::size_t(nd), kNoIndex);
-  scatter.dof.assign(std::size_t(cells.size()) * std::size_t(nd), kNoIndex);
-  scatter.tie_offset.assign(std::size_t(cells.size()) + 1, 0);
+  scatter.slot.assign(std::size_t(n_cells) * std::size_t(nd) * std::size_t(nd), kNoIndex);
+  scatter.dof.assign(std::size_t(n_cells) * std::size_t(nd), kNoIndex);
+  scatter.tie_offset.assign(std::size_t(n_cells) + 1, 0);
   scatter.local_ties.clear();
-  for (Index c = 0; c < cells.size(); ++c) {
-    const Index* nodes = cells.cell_nodes(c);
+  for (Index c = 0; c < n_cells; ++c) {
+    const Index* nodes = cells.cell_nodes(subset ? (*subset)[std::size_t(c)] : c);
     for (int a = 0; a < nd; ++a) scatter.dof[std::size_t(c) * nd + a] = dofs.dof(nodes[a / pn], a % pn);
     if (!dofs.ties.empty())
       for (int a = 0; a < nd; ++a) {

@@ -39,12 +39,15 @@ struct SparsePattern {
   std::uint64_t version = 0;         // changes whenever the pattern changes (symbolic analysis is redone)
 };
 
-// Builds the pattern coupling every pair of dofs of every cell in `blocks`, numbered by `dofs`.
-void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, SparsePattern& pattern);
+// Builds the pattern coupling every pair of dofs of every cell in `blocks`, numbered by `dofs`. With
+// `subsets`, block b contributes only the cells listed in subsets[b] (nullptr: all; MPM: the active cells).
+void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, SparsePattern& pattern,
+                   const std::vector<const std::vector<Index>*>& subsets = {});
 // Value index of entry (row, col) of the pattern, or kNoIndex.
 Index find_slot(const SparsePattern& pattern, Index row, Index col);
-
-// Builds the scatter of one block into an already built pattern.
-void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter);
+// Builds the scatter of one block into an already built pattern; with `subset`, entry k of the scatter is
+// cell (*subset)[k].
+void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter,
+                   const std::vector<Index>* subset = nullptr);
 
 }  // namespace loom

@@ -2,6 +2,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/methods/fem_method.hpp"
+#include "engine/methods/mpm_method.hpp"
 
 namespace loom {
 
@@ -9,9 +10,10 @@ std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOpti
   switch (scene.scene.method) {
     case Method::fem:
     case Method::pfem: return std::make_unique<FemRun>(scene, options);
+    case Method::mpm: return std::make_unique<MpmRun>(scene, options);
     default: break;
   }
-  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, pfem)");
+  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, pfem, mpm)");
 }
 
 }  // namespace loom

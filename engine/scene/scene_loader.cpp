@@ -10,8 +10,11 @@
 #include <toml++/toml.h>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/triangle_rules.hpp"
 #include "engine/scene/expression.hpp"
+#include "engine/scene/method_checks.hpp"
 #include "engine/scene/overrides.hpp"
+#include "engine/scene/pfem_options.hpp"
 #include "engine/scene/schema_validator.hpp"
 #include "engine/scene/table_reader.hpp"
 
@@ -85,9 +88,13 @@ class Loader {
     for (const auto& b : root_.array("boundary")) read_boundary(s, b);
     s.body_force = read_vector(root_.table("body_force"), diag_);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
-    read_pfem(s);
+    read_pfem_options(s, root_);
+    const auto grid = root_.table("grid");
+    s.grid.present = grid.present();
+    if (grid.present()) read_mesh(grid, s.grid.mesh);
     read_output(s);
     check_mass(s);
+    check_method_support(s, root_, diag_);
     return s;
   }
 
@@ -99,8 +106,8 @@ class Loader {
     const std::string m = t.string("method");
     s.scene.method = pick<Method>(m, {{"fem", Method::fem}, {"pfem", Method::pfem}, {"es_pfem", Method::es_pfem},
                                       {"mpm", Method::mpm}, {"mpm_fem", Method::mpm_fem}});
-    if (s.scene.method != Method::fem && s.scene.method != Method::pfem)
-      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, pfem)");
+    if (s.scene.method != Method::fem && s.scene.method != Method::pfem && s.scene.method != Method::mpm)
+      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, pfem, mpm)");
     s.scene.dimension = int(t.integer("dimension"));
     s.scene.units = t.string("units");
     s.scene.description = t.string("description");
@@ -108,7 +115,12 @@ class Loader {
 
   void read_time(SceneSpec& s) {
     const auto t = root_.table("time");
-    s.time.integrator = pick<Integrator>(t.string("integrator"), {{"static", Integrator::static_}, {"euler_backward", Integrator::euler_backward}});
+    s.time.integrator = pick<Integrator>(t.string("integrator"), {{"static", Integrator::static_}, {"euler_backward", Integrator::euler_backward},
+                                                                  {"newmark", Integrator::newmark}});
+    s.time.initial_acceleration = pick<InitialAcceleration>(t.string("initial_acceleration"), {{"zero", InitialAcceleration::zero},
+                                                                                               {"equilibrium", InitialAcceleration::equilibrium}});
+    if (t.has("initial_acceleration") && s.time.integrator != Integrator::newmark)
+      t.error("initial_acceleration", "initial_acceleration is used by integrator = \"newmark\" only");
     s.time.dt = t.real("dt");
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
@@ -132,7 +144,8 @@ class Loader {
     m.name = read_name(t);
     m.where = t.where();
     if (find_by_name(s.materials, m.name) != kNoIndex) t.error("name", "a material named \"" + m.name + "\" already exists");
-    m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic}});
+    m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic},
+                                                                       {"neo_hooke_split", MaterialModel::neo_hooke_split}});
     m.density = t.real("density");
     const bool e_nu = t.has("E") || t.has("nu"), k_g = t.has("K") || t.has("G");
     if (e_nu && k_g) {
@@ -141,6 +154,10 @@ class Loader {
       if (!t.has("E")) t.error("nu", "nu needs E");
       if (!t.has("nu")) t.error("E", "E needs nu");
       m.E = t.real("E"), m.nu = t.real("nu");
+      // nu = 1/2: kappa and lambda are infinite (IEEE inf); only the mixed u-p formulation takes it.
+      if (m.nu == 0.5 && m.model != MaterialModel::neo_hooke_split)
+        t.error("nu", "nu = 0.5 (incompressible) needs model = \"neo_hooke_split\" and element = \"p1p1_up\" (method mpm); "
+                      "other models must be in (-1, 0.5)");
       m.mu = m.E / (2 * (1 + m.nu));                            // seed 000 eq 49
       m.lambda = m.E * m.nu / ((1 + m.nu) * (1 - 2 * m.nu));
       m.G = m.mu, m.K = m.lambda + 2 * m.mu / 3;                 // eq 50
@@ -166,7 +183,9 @@ class Loader {
     b.material = find_by_name(s.materials, mat);
     if (t.has("material") && b.material == kNoIndex)
       t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
-    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi}});
+    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi},
+                                                        {"p1p1_up", Formulation::p1p1_up}});
+    read_mpm_body(s, t, b);
     if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&
         s.materials[std::size_t(b.material)].model == MaterialModel::linear_elastic) {
       // phi is tied to det F (eq 26): a finite-strain constraint that a small-strain law cannot honour
@@ -175,7 +194,7 @@ class Loader {
     }
     if (b.element != Formulation::p1p1_uphi && t.has("alpha_s")) {
       t.error("alpha_s", "alpha_s is only used by element = \"p1p1_uphi\"");
-    } else if (b.material != kNoIndex) {
+    } else if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex) {
       // seed 000 eq 30: a stress-like factor; a formula is evaluated in the body's material constants.
       const auto& material = s.materials[std::size_t(b.material)];
       const auto spec = t.expression("alpha_s");
@@ -185,8 +204,31 @@ class Loader {
       if (!err.empty()) t.error("alpha_s", "invalid formula \"" + text + "\" (it may use K, G, E, nu): " + err);
       else if (!(b.alpha_s >= 0.0)) t.error("alpha_s", "must be >= 0, got " + std::to_string(b.alpha_s));
     }
-    const auto mesh = t.table("mesh");
-    MeshSpec& m = b.mesh;
+    read_mesh(t.table("mesh"), b.mesh);
+    b.body_force = read_vector(t.table("body_force"), diag_);
+    s.bodies.push_back(b);
+  }
+
+  // Options of method mpm on a body (seed 003): particles, and the stabilisation of p1p1_up.
+  void read_mpm_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
+    b.particles_per_cell = int(t.integer("particles_per_cell"));
+    if (t.has("particles_per_cell") && !has_triangle_rule(b.particles_per_cell)) {
+      std::string sizes;
+      for (int n : triangle_rule_sizes()) sizes += (sizes.empty() ? "" : ", ") + std::to_string(n);
+      t.error("particles_per_cell", "no triangle rule with " + std::to_string(b.particles_per_cell) + " points (available: " + sizes + ")");
+    }
+    b.stabilisation = pick<Stabilisation>(t.string("stabilisation"), {{"none", Stabilisation::none}, {"ppp", Stabilisation::ppp},
+                                                                      {"asgs", Stabilisation::asgs}, {"osgs", Stabilisation::osgs}});
+    b.tau_c1 = t.real("tau_c1");
+    b.tau_c2 = t.real("tau_c2");
+    for (const char* k : {"stabilisation", "tau_c1", "tau_c2"})
+      if (t.has(k) && b.element != Formulation::p1p1_up) t.error(k, std::string(k) + " is only used by element = \"p1p1_up\"");
+    if (b.element == Formulation::p1p1_up && b.material != kNoIndex &&
+        s.materials[std::size_t(b.material)].model != MaterialModel::neo_hooke_split)
+      t.error("element", "p1p1_up takes the pressure of a deviatoric/volumetric split: use it with model = \"neo_hooke_split\"");
+  }
+
+  void read_mesh(const TableReader& mesh, MeshSpec& m) {
     m.where = mesh.where();
     m.generator = pick<MeshGenerator>(mesh.string("generator"), {{"rectangle", MeshGenerator::rectangle}, {"cooks_membrane", MeshGenerator::cooks_membrane}});
     const auto div = mesh.ivec2("divisions");
@@ -206,8 +248,6 @@ class Loader {
       for (const char* k : {"origin", "size"})
         if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"cooks_membrane\" (use scale)");
     }
-    b.body_force = read_vector(t.table("body_force"), diag_);
-    s.bodies.push_back(b);
   }
 
   void read_boundary(SceneSpec& s, const TableReader& t) {
@@ -228,6 +268,8 @@ class Loader {
     if (region.has("box") && (box[0].x() > box[1].x() || box[0].y() > box[1].y()))
       region.error("box", "the first corner must be the lower-left one ([[xmin, ymin], [xmax, ymax]])");
     b.displacement = read_vector(t.table("displacement"), diag_);
+    b.pressure = t.expression("pressure");
+    check_expression(b.pressure, diag_);
     const auto traction = t.table("traction");
     b.has_traction = traction.present();
     b.traction = read_vector(traction, diag_);
@@ -246,7 +288,8 @@ class Loader {
     const std::string kind = t.string("kind");
     p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
                                     {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
-                                    {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}});
+                                    {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy}});
+    p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
     p.max = t.string("bound") == "max";
     const std::string quantity = t.string("quantity");
     p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
@@ -283,6 +326,7 @@ class Loader {
         break;
       }
       case ProbeKind::newton:
+      case ProbeKind::energy:
         unused("boundary"), unused("component"), unused("at"), unused("body");
         break;
       case ProbeKind::remesh:
@@ -309,32 +353,8 @@ class Loader {
     }
     if (p.kind != ProbeKind::extent) unused("bound");
     if (p.kind != ProbeKind::remesh) unused("quantity");
+    if (p.kind != ProbeKind::energy) unused("energy");
     s.probes.push_back(p);
-  }
-
-  void read_pfem(SceneSpec& s) {
-    const auto remesh = root_.table("remesh"), map = root_.table("map");
-    if (s.scene.method != Method::pfem) {
-      if (remesh.present()) root_.error("remesh", "[remesh] is used by method = \"pfem\" only");
-      if (map.present()) root_.error("map", "[map] is used by method = \"pfem\" only");
-      return;
-    }
-    s.pfem.alpha = remesh.real("alpha");
-    s.pfem.every = int(remesh.integer("every"));
-    if (const auto l = remesh.expression("lchar"); l && remesh.has("lchar")) {
-      char* end = nullptr;
-      const double v = std::strtod(l->text.c_str(), &end);
-      if (l->text == "local") {
-        s.pfem.local = true;
-      } else if (end && *end == '\0' && end != l->text.c_str() && v > 0.0) {
-        s.pfem.local = false, s.pfem.lchar = v;
-      } else {
-        remesh.error("lchar", "expected a length > 0 or \"local\", got \"" + l->text + "\"");
-      }
-    }
-    s.pfem.btm = map.string("scheme") == "btm";
-    s.pfem.iso = int(map.integer("iso"));
-    if (!s.pfem.btm && map.has("iso") && s.pfem.iso != 0) map.error("iso", "iso is used by scheme = \"btm\" only (CPM copies F as it is)");
   }
 
   void read_output(SceneSpec& s) {

@@ -16,11 +16,14 @@
 namespace loom {
 
 enum class Method { fem, pfem, es_pfem, mpm, mpm_fem };
-enum class Integrator { static_, euler_backward };
+enum class Integrator { static_, euler_backward, newmark };
+enum class InitialAcceleration { zero, equilibrium };
+enum class Stabilisation { none, ppp, asgs, osgs };
+enum class EnergyPart { kinetic, elastic, total };
 enum class MassKind { lumped, consistent };
-enum class MaterialModel { neo_hooke, linear_elastic };
+enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split };
 enum class MeshGenerator { rectangle, cooks_membrane };
-enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy };
 enum class RemeshQuantity { area_change, changed, rejected, isolated };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
@@ -42,6 +45,7 @@ struct TimeSpec {
   double dt = 1.0;
   int steps = 1;
   MassKind mass = MassKind::lumped;
+  InitialAcceleration initial_acceleration = InitialAcceleration::zero;  // newmark
 };
 
 struct SolverSpec {
@@ -87,7 +91,17 @@ struct BodySpec {
   double alpha_s = 0.0;  // PPP stabilisation of p1p1_uphi, stress units (resolved from the scene's formula)
   MeshSpec mesh;
   VectorExpression body_force;
+  // Method mpm (seed 003):
+  int particles_per_cell = 3;  // material points per body cell (triangle_rules)
+  Stabilisation stabilisation = Stabilisation::asgs;  // p1p1_up
+  double tau_c1 = 1.0, tau_c2 = 1.0;  // eq 21: tau1 = c1 h^2 / (2 mu), tau2 = 2 c2 mu
   SourceRef where;
+};
+
+// The background grid of method mpm: a generated triangulation (MeshSpec's generators).
+struct GridSpec {
+  bool present = false;
+  MeshSpec mesh;
 };
 
 struct BoundarySpec {
@@ -98,6 +112,7 @@ struct BoundarySpec {
   VectorExpression displacement;
   VectorExpression traction;
   bool has_traction = false;
+  std::optional<ExpressionSpec> pressure;  // mpm, p1p1_up: prescribed grid pressure
 };
 
 struct ProbeSpec {
@@ -109,6 +124,7 @@ struct ProbeSpec {
   Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
   bool max = true;            // extent: largest (true) or smallest coordinate
   RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh
+  EnergyPart energy = EnergyPart::total;  // energy
   SourceRef where;
 };
 
@@ -135,6 +151,7 @@ struct SceneSpec {
   SolverSpec solver;
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
+  GridSpec grid;
   std::vector<BoundarySpec> boundaries;
   VectorExpression body_force;  // global, per unit mass
   std::vector<ProbeSpec> probes;

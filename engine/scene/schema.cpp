@@ -22,19 +22,27 @@ std::vector<KeySpec> build_schema() {
   // [scene]
   s.push_back(key("scene", K::table, "What the scene is and which method runs it.").require());
   s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
-  s.push_back(key("scene.method", K::choice, "Method (recipe) that runs the scene: fem (fixed mesh) or pfem (remeshing every step, seed 000 §3).")
+  s.push_back(key("scene.method", K::choice,
+                  "Method (recipe) that runs the scene: fem (updated-Lagrangian finite elements on a fixed mesh), pfem (remeshing "
+                  "every step, seed 000 §3) or mpm (implicit material point method, seed 003); the others are planned.")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
   s.push_back(key("scene.description", K::string, "Free text.").by_default("\"\""));
   // [time]
   s.push_back(key("time", K::table, "Time stepping.").require());
-  s.push_back(key("time.integrator", K::choice, "static: no inertia; euler_backward: implicit Euler (seed 000 eq 12).")
-                  .one_of({"static", "euler_backward"}).by_default("static"));
+  s.push_back(key("time.integrator", K::choice,
+                  "static: no inertia; euler_backward: implicit Euler (seed 000 eq 12; method fem); newmark: Newmark with beta = 1/4, "
+                  "gamma = 1/2 on the grid and lumped mass (seed 003 §3.3; method mpm).")
+                  .one_of({"static", "euler_backward", "newmark"}).by_default("static"));
   s.push_back(key("time.dt", K::real, "Time step (pseudo-time for static runs; boundary expressions see t = step * dt).").require().above(0));
   s.push_back(key("time.steps", K::integer, "Number of steps.").require().at_least(1));
-  s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent.")
+  s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent (mpm: lumped only).")
                   .one_of({"lumped", "consistent"}).by_default("lumped"));
+  s.push_back(key("time.initial_acceleration", K::choice,
+                  "newmark: the particles' acceleration at t = 0: zero (seed 003 Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
+                  "lumped mass, so that a suddenly applied constant load is integrated exactly).")
+                  .one_of({"zero", "equilibrium"}).by_default("zero"));
   // [solver]
   s.push_back(key("solver", K::table, "Newton-Raphson and linear solver settings."));
   s.push_back(key("solver.max_iterations", K::integer, "Newton iterations allowed per step before a cut-back.").by_default("25").at_least(1));
@@ -48,10 +56,14 @@ std::vector<KeySpec> build_schema() {
   // [[material]]
   s.push_back(key("material", K::table_array, "Materials; give either (E, nu) or (K, G).").require());
   s.push_back(key("material[].name", K::string, "Name bodies refer to.").require());
-  s.push_back(key("material[].model", K::choice, "neo_hooke: seed 000 eq 48-51; linear_elastic: small-strain Hooke.")
-                  .one_of({"neo_hooke", "linear_elastic"}).require());
+  s.push_back(key("material[].model", K::choice,
+                  "neo_hooke: seed 000 eq 48-51; linear_elastic: small-strain Hooke; neo_hooke_split: deviatoric Neo-Hooke on "
+                  "the isochoric invariant plus kappa/2 (J - 1)^2 (seed 003 §2.2), the material of the mixed u-p formulation.")
+                  .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split"}).require());
   s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
-  s.push_back(key("material[].nu", K::real, "Poisson's ratio (with E), -1 < nu < 0.5.").above(-1).below(0.5));
+  s.push_back(key("material[].nu", K::real,
+                  "Poisson's ratio (with E), -1 < nu < 0.5; nu = 0.5 (incompressible, 1/kappa = 0) with model neo_hooke_split and "
+                  "element p1p1_up.").above(-1).at_most(0.5));
   s.push_back(key("material[].K", K::real, "Bulk modulus (with G).").above(0));
   s.push_back(key("material[].G", K::real, "Shear modulus (with K).").above(0));
   s.push_back(key("material[].density", K::real, "Reference mass density rho_0 (needed by dynamic integrators and body forces).").by_default("0").at_least(0));
@@ -61,12 +73,24 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].material", K::string, "Name of a [[material]].").require());
   s.push_back(key("body[].element", K::choice,
                   "Element formulation: p1 (linear displacement triangle), tri6 (quadratic displacement triangle, seed 000 §4.1), "
-                  "p1p1_uphi (mixed linear displacement / nodal volume dilatation with polynomial pressure projection, seed 000 §4.2).")
-                  .one_of({"p1", "tri6", "p1p1_uphi"}).by_default("p1"));
+                  "p1p1_uphi (mixed linear displacement / nodal volume dilatation with polynomial pressure projection, seed 000 §4.2), "
+                  "p1p1_up (method mpm: mixed linear displacement / linear pressure on the grid, seed 003 eqs 16-26). Method mpm "
+                  "takes p1 or p1p1_up; they are the formulation on the background grid.")
+                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up"}).by_default("p1"));
   s.push_back(key("body[].alpha_s", K::expression,
                   "PPP stabilisation factor alpha_s of p1p1_uphi (seed 000 eq 30), in stress units: a number, or a formula in the "
                   "material's K and G (eq 47 suggests K; eq 52 and the benchmarks use K/10).").by_default("\"K/10\""));
-  s.push_back(key("body[].mesh", K::table, "Mesh generator and its parameters.").require());
+  s.push_back(key("body[].particles_per_cell", K::integer,
+                  "Method mpm: material points generated in each cell of the body mesh at the points of a symmetric triangle rule "
+                  "(1, 3, 6, 12, 16 or 33; Dunavant), volume = rule weight x cell area, mass = density x volume.")
+                  .by_default("3").at_least(1).at_most(33));
+  s.push_back(key("body[].stabilisation", K::choice,
+                  "p1p1_up: none (Galerkin, unstable for nu -> 0.5), ppp (polynomial pressure projection, Dohrmann-Bochev, factor "
+                  "1/mu), asgs or osgs (variational subgrid scales, seed 003 §4 eqs 19-26).")
+                  .one_of({"none", "ppp", "asgs", "osgs"}).by_default("asgs"));
+  s.push_back(key("body[].tau_c1", K::real, "p1p1_up, asgs/osgs: c1 of tau1 = c1 h^2 / (2 mu), h = sqrt(grid cell area) (seed 003 eq 21).").by_default("1.0").above(0));
+  s.push_back(key("body[].tau_c2", K::real, "p1p1_up, asgs/osgs: c2 of tau2 = 2 c2 mu (seed 003 eq 21).").by_default("1.0").above(0));
+  s.push_back(key("body[].mesh", K::table, "Mesh generator and its parameters (method mpm: the mesh the particles are generated in).").require());
   s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)).")
                   .one_of({"rectangle", "cooks_membrane"}).require());
   s.push_back(key("body[].mesh.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
@@ -80,18 +104,39 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].body_force", K::table, "Body force per unit mass on this body (added to the global [body_force])."));
   s.push_back(key("body[].body_force.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("body[].body_force.y", K::expression, "y component." + expr).by_default("0"));
+  // [grid]
+  s.push_back(key("grid", K::table,
+                  "Method mpm: the background grid (seed 003 §3), a fixed triangulation that need not conform to the body and "
+                  "must contain the particles at all times; only cells holding particles are active."));
+  s.push_back(key("grid.generator", K::choice, "rectangle (located by arithmetic unless shifted or distorted) or cooks_membrane (located by walking).")
+                  .one_of({"rectangle", "cooks_membrane"}).require());
+  s.push_back(key("grid.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
+  s.push_back(key("grid.size", K::vec2, "Width and height (rectangle; required there)."));
+  s.push_back(key("grid.divisions", K::ivec2, "Cell edges along x and y.").require());
+  s.push_back(key("grid.pattern", K::choice, "Triangulation of the squares: right, alternating, or shifted.")
+                  .one_of({"right", "alternating", "shifted"}).by_default("right"));
+  s.push_back(key("grid.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
+  s.push_back(key("grid.distortion", K::real, "Random move of interior grid nodes (fraction of the smallest altitude).").by_default("0.0").at_least(0).at_most(0.25));
+  s.push_back(key("grid.seed", K::integer, "Seed of the distortion.").by_default("1").at_least(0));
   // [[boundary]]
   s.push_back(key("boundary", K::table_array, "Named regions with optional conditions on them."));
   s.push_back(key("boundary[].name", K::string, "Name probes refer to.").require());
   s.push_back(key("boundary[].body", K::string, "Body the region selects from (may be left out when there is one body)."));
-  s.push_back(key("boundary[].region", K::table, "Region: nodes inside the box, and boundary edges with both end nodes inside.").require());
+  s.push_back(key("boundary[].region", K::table,
+                  "Region: nodes inside the box, and boundary edges with both end nodes inside. Method mpm: a displacement or "
+                  "pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges in the box (carried "
+                  "by traction points that move with the body).").require());
   s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (bounds included, to 1e-9 of the body size).").require());
-  s.push_back(key("boundary[].displacement", K::table, "Prescribed displacement; a component left out stays free (a roller)."));
+  s.push_back(key("boundary[].displacement", K::table,
+                  "Prescribed displacement; a component left out stays free (a roller). Method mpm: each step moves the region's "
+                  "grid nodes by g(t_n+1) - g(t_n), so g must vanish at t = 0 (the particles start undisplaced)."));
   s.push_back(key("boundary[].displacement.x", K::expression, "Prescribed u_x." + expr));
   s.push_back(key("boundary[].displacement.y", K::expression, "Prescribed u_y." + expr));
   s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges (seed 000 eq 8)."));
   s.push_back(key("boundary[].traction.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("boundary[].traction.y", K::expression, "y component." + expr).by_default("0"));
+  s.push_back(key("boundary[].pressure", K::expression, "Method mpm, p1p1_up: prescribed grid pressure p (sigma = sigma_dev + p I) at the region's grid nodes, "
+                  "e.g. to fix the pressure level of an enclosed incompressible body." + expr));
   // [body_force]
   s.push_back(key("body_force", K::table, "Body force per unit mass on every body (gravity: y = -9.81); needs density > 0."));
   s.push_back(key("body_force.x", K::expression, "x component." + expr).by_default("0"));
@@ -104,8 +149,11 @@ std::vector<KeySpec> build_schema() {
                   "(f_int + M a - f_ext); point: displacement of the node nearest to `at`; newton: Newton iterations of the step; "
                   "extent: largest (bound = max) or smallest coordinate of a body's nodes along `component`; "
                   "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation); "
-                  "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh.")
-                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh"}).require());
+                  "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh; "
+                  "energy (method mpm): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles, or their total. "
+                  "Method mpm: point probes follow a tracer point that starts at `at` and moves with the grid (the material "
+                  "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides.")
+                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy"}).require());
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
   s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe.").one_of({"x", "y"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point probe."));
@@ -127,6 +175,7 @@ std::vector<KeySpec> build_schema() {
                   .one_of({"cpm", "btm"}).by_default("cpm"));
   s.push_back(key("map.iso", K::integer, "BTM interpolation of F: 0 plain, 1 F_vol and F_iso separately, 2 log U and log R of the polar decomposition (eqs 22-23).")
                   .by_default("0").at_least(0).at_most(2));
+  s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total"}).by_default("total"));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));
   s.push_back(key("output.directory", K::string, "Output directory (relative to the working directory); `loom run --out` replaces it.")

@@ -42,6 +42,12 @@ struct BoundaryConditions {
   std::vector<std::array<Index, D>> body_force;  // per body, per component; kNoIndex: zero
   std::vector<Tie> ties;                           // dofs tied to the mean of two others (PFEM TRI6, eq 24)
 
+  // Method mpm: the traction points (a Points store) sample the loaded boundary edges of the body mesh; each
+  // carries the traction expressions of its edge (weight: its share of the edge's reference length).
+  std::vector<std::array<Index, D>> traction_point_expression;
+  std::vector<Vec<D>> particle_body_force;  // per particle, at the step time: b per unit mass
+  bool increments = false;  // mpm: `target` holds the step's increment of prescribed displacements
+
   std::vector<std::string> boundary_names;              // the scene's [[boundary]] names, in order
   std::vector<std::vector<Index>> boundary_nodes;       // nodes selected by each boundary's region
   std::vector<std::vector<Index>> boundary_prescribed;  // entries of `prescribed` owned by each boundary

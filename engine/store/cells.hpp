@@ -17,14 +17,17 @@ enum class CellType { tri3, tri6 };
 //  p1:        linear displacement triangle (tri3, one point);
 //  tri6:      quadratic displacement triangle (tri6, three points; seed 000 §4.1);
 //  p1p1_uphi: mixed linear triangle, displacement and nodal volume dilatation phi with polynomial
-//             pressure projection (tri3, three points; seed 000 §4.2).
-enum class Formulation { p1, tri6, p1p1_uphi };
+//             pressure projection (tri3, three points; seed 000 §4.2);
+//  p1p1_up:   mixed linear displacement / linear pressure on an MPM background grid, material points as
+//             quadrature points (seed 003 eqs 16-26).
+enum class Formulation { p1, tri6, p1p1_uphi, p1p1_up };
 
 inline const char* formulation_name(Formulation f) {
   switch (f) {
     case Formulation::p1: return "p1";
     case Formulation::tri6: return "tri6";
     case Formulation::p1p1_uphi: return "p1p1_uphi";
+    case Formulation::p1p1_up: return "p1p1_up";
   }
   return "?";
 }
@@ -43,6 +46,10 @@ struct Cells {
   Column<Index> nodes;      // n_cells * stride node indices, counter-clockwise corners first
   Column<Index> body;       // owning body index
   Column<Index> colour;     // colour of each cell: cells of one colour share no node
+  // Background grids only (MPM): the grid never moves, so its geometry is computed once.
+  Column<Index> neighbour;  // 3 per cell: the cell across the side opposite corner a, kNoIndex on the boundary
+  Column<double> measure;   // cell area, L^2
+  Column<Mat32> gradient;   // dN^a/dx of the corners (tri3: constant over the cell), 1/L
 
   // Cells grouped by colour: the cells of colour k are by_colour[colour_offsets[k] .. colour_offsets[k+1]).
   std::vector<Index> by_colour;
@@ -62,7 +69,7 @@ struct Cells {
 
   template <class Visit>
   void for_each_column(Visit&& f) const {
-    f("nodes", nodes), f("body", body), f("colour", colour);
+    f("nodes", nodes), f("body", body), f("colour", colour), f("neighbour", neighbour), f("measure", measure), f("gradient", gradient);
   }
 };
 

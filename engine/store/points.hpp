@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <type_traits>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -23,8 +24,10 @@ struct Points {
   Column<double> mass;    // M
   Column<double> volume;  // reference volume, L^D
   Column<Mat3> F;         // deformation gradient
-  Column<double> pressure;
+  Column<double> pressure;  // mixed u-p (seed 003): p of sigma = sigma_dev + p I, positive in tension
   Column<Index> body;
+  Column<Vec2> proj_u;      // OSGS (seed 003 §5): residual projections P_u, P_p carried between steps
+  Column<double> proj_p;
 
   Index size() const {
     Index n = 0;
@@ -35,12 +38,24 @@ struct Points {
   template <class Visit>
   void for_each_column(Visit&& f) {
     f("X", X), f("u", u), f("v", v), f("a", a), f("mass", mass), f("volume", volume), f("F", F),
-        f("pressure", pressure), f("body", body);
+        f("pressure", pressure), f("body", body), f("proj_u", proj_u), f("proj_p", proj_p);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {
     const_cast<Points*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
   }
+
+  // Sizes every used column to n points (new entries zero, F the identity).
+  void resize(Index n) {
+    for_each_column([n](const char*, auto& c) {
+      using T = typename std::decay_t<decltype(c)>::value_type;
+      if constexpr (std::is_arithmetic_v<T>) c.resize(n, T(0));
+      else if constexpr (std::is_same_v<T, Mat3>) c.resize(n, Mat3::Identity());
+      else c.resize(n, T::Zero());
+    });
+  }
+
+  Vec<D> position(Index i) const { return X[i] + u[i]; }
 
   // Removes point i by moving the last point into its place, in every used column.
   void swap_remove(Index i) {

@@ -2,6 +2,7 @@
 
 #include <atomic>
 
+#include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
 #include "systems/assemble/elements/element_mass.hpp"
 #include "systems/assemble/elements/p1_cell.hpp"
@@ -266,6 +267,7 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
       case Formulation::p1: assemble_p1_block(args); break;
       case Formulation::tri6: assemble_tri6_block(args); break;
       case Formulation::p1p1_uphi: assemble_uphi_block(args); break;
+      case Formulation::p1p1_up: LOOM_ASSERT(false, "p1p1_up cells live on MPM grids (assemble_grid_system)"); break;
     }
   }
 

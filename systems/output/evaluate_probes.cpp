@@ -108,6 +108,9 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
           case RemeshQuantity::isolated: values[k] = remesh.isolated; break;
         }
         break;
+      case ProbeKind::energy:  // method mpm only (the loader rejects it for fem)
+        values[k] = kNaN;
+        break;
       case ProbeKind::pressure_jump: {
         double sum = 0.0;
         for (const auto& [block, c1, c2] : plan.cell_pairs[k]) {

@@ -25,6 +25,14 @@ std::unique_ptr<FemRun> make_fem_run(const SceneSpec& scene, const std::string& 
   return std::make_unique<FemRun>(scene, options);
 }
 
+std::unique_ptr<MpmRun> make_mpm_run(const SceneSpec& scene, const std::string& out) {
+  RunOptions options;
+  options.output_directory = out;
+  options.write_files = !out.empty();
+  options.progress = false;
+  return std::make_unique<MpmRun>(scene, options);
+}
+
 namespace {
 std::string quote(const std::string& s) {
   std::string r = "'";

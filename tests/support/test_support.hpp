@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/methods/fem_method.hpp"
+#include "engine/methods/mpm_method.hpp"
 #include "engine/scene/scene_spec.hpp"
 
 namespace loom::testing {
@@ -15,6 +16,8 @@ SceneSpec scene_from_text(const std::string& text, const std::vector<std::string
 
 // Builds an FemRun that writes no files (output_directory empty) unless `out` is given.
 std::unique_ptr<FemRun> make_fem_run(const SceneSpec& scene, const std::string& out = "");
+// Same for an MpmRun (method mpm).
+std::unique_ptr<MpmRun> make_mpm_run(const SceneSpec& scene, const std::string& out = "");
 
 struct Command {
   int exit_code = -1;

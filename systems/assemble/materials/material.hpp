@@ -2,6 +2,7 @@
 // variant once per cell, never through a virtual call per point.
 #pragma once
 
+#include <cmath>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -9,15 +10,17 @@
 #include "engine/scene/scene_spec.hpp"
 #include "systems/assemble/materials/linear_elastic.hpp"
 #include "systems/assemble/materials/neo_hooke.hpp"
+#include "systems/assemble/materials/neo_hooke_split.hpp"
 
 namespace loom {
 
-using Material = std::variant<NeoHooke, LinearElastic>;
+using Material = std::variant<NeoHooke, LinearElastic, NeoHookeSplit>;
 
 inline Material make_material(const MaterialSpec& m) {
   switch (m.model) {
     case MaterialModel::neo_hooke: return NeoHooke{m.lambda, m.mu};
     case MaterialModel::linear_elastic: return LinearElastic{m.lambda, m.mu};
+    case MaterialModel::neo_hooke_split: return NeoHookeSplit{m.mu, std::isinf(m.K) ? 0.0 : 1.0 / m.K};
   }
   return NeoHooke{m.lambda, m.mu};
 }

@@ -1,0 +1,123 @@
+#include "engine/mesh/background_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/colouring.hpp"
+
+namespace loom {
+namespace {
+
+// Bucket index over the bounding box with about one cell per bucket.
+void build_buckets(const Nodes<2>& nodes, const Cells& cells, GridLayout& layout) {
+  const Vec2 extent = (layout.hi - layout.lo).cwiseMax(1e-300);
+  const double per_bucket = std::sqrt(extent.x() * extent.y() / std::max<Index>(cells.size(), 1));
+  layout.bx = std::clamp(int(std::ceil(extent.x() / per_bucket)), 1, 4096);
+  layout.by = std::clamp(int(std::ceil(extent.y() / per_bucket)), 1, 4096);
+  layout.bucket_size = Vec2(extent.x() / layout.bx, extent.y() / layout.by);
+  auto range = [&](Index c, int& i0, int& i1, int& j0, int& j1) {
+    Vec2 lo = nodes.X[cells.node(c, 0)], hi = lo;
+    for (int a = 1; a < 3; ++a) lo = lo.cwiseMin(nodes.X[cells.node(c, a)]), hi = hi.cwiseMax(nodes.X[cells.node(c, a)]);
+    lo.array() -= layout.tolerance, hi.array() += layout.tolerance;
+    i0 = std::clamp(int(std::floor((lo.x() - layout.lo.x()) / layout.bucket_size.x())), 0, layout.bx - 1);
+    i1 = std::clamp(int(std::floor((hi.x() - layout.lo.x()) / layout.bucket_size.x())), 0, layout.bx - 1);
+    j0 = std::clamp(int(std::floor((lo.y() - layout.lo.y()) / layout.bucket_size.y())), 0, layout.by - 1);
+    j1 = std::clamp(int(std::floor((hi.y() - layout.lo.y()) / layout.bucket_size.y())), 0, layout.by - 1);
+  };
+  layout.bucket_offsets.assign(std::size_t(layout.bx) * std::size_t(layout.by) + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<Index> fill(layout.bucket_offsets.begin(), layout.bucket_offsets.end() - 1);
+    for (Index c = 0; c < cells.size(); ++c) {
+      int i0, i1, j0, j1;
+      range(c, i0, i1, j0, j1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const std::size_t b = std::size_t(j) * std::size_t(layout.bx) + std::size_t(i);
+          if (pass == 0) ++layout.bucket_offsets[b + 1];
+          else layout.bucket_cells[std::size_t(fill[b]++)] = c;
+        }
+    }
+    if (pass == 0) {
+      for (std::size_t b = 0; b + 1 < layout.bucket_offsets.size(); ++b) layout.bucket_offsets[b + 1] += layout.bucket_offsets[b];
+      layout.bucket_cells.assign(std::size_t(layout.bucket_offsets.back()), kNoIndex);
+    }
+  }
+}
+
+}  // namespace
+
+void find_cell_neighbours(Cells& cells, Index n_nodes) {
+  cells.neighbour.use();
+  cells.neighbour.resize_strided(cells.size(), 3, kNoIndex);
+  std::unordered_map<std::uint64_t, std::pair<Index, int>> open;  // side key -> (cell, corner opposite)
+  open.reserve(std::size_t(cells.size()) * 2);
+  auto key = [n_nodes](Index a, Index b) { return std::uint64_t(std::min(a, b)) * std::uint64_t(n_nodes) + std::uint64_t(std::max(a, b)); };
+  for (Index c = 0; c < cells.size(); ++c)
+    for (int a = 0; a < 3; ++a) {
+      const std::uint64_t k = key(cells.node(c, (a + 1) % 3), cells.node(c, (a + 2) % 3));
+      auto it = open.find(k);
+      if (it == open.end()) {
+        open.emplace(k, std::make_pair(c, a));
+        continue;
+      }
+      cells.neighbour[3 * c + a] = it->second.first;
+      cells.neighbour[3 * it->second.first + it->second.second] = c;
+      open.erase(it);
+    }
+}
+
+void build_background_grid(const MeshData& mesh, const RectangleSpec* rectangle, Formulation formulation, Nodes<2>& nodes,
+                           Cells& cells, GridLayout& layout) {
+  // 1. Nodes and cells.
+  nodes.resize(Index(mesh.X.size()));
+  for (Index i = 0; i < nodes.size(); ++i) nodes.X[i] = mesh.X[std::size_t(i)];
+  cells = Cells(CellType::tri3, formulation);
+  cells.nodes.values() = mesh.triangles;
+  cells.body.assign(mesh.n_triangles(), 0);
+  colour_cells(cells, nodes.size());
+  find_cell_neighbours(cells, nodes.size());
+
+  // 2. Geometry: area and constant gradients of the linear shape functions.
+  cells.measure.use();
+  cells.gradient.use();
+  cells.measure.resize(cells.size(), 0.0);
+  cells.gradient.resize(cells.size(), Mat32::Zero());
+  for (Index c = 0; c < cells.size(); ++c) {
+    const Vec2 &x0 = nodes.X[cells.node(c, 0)], &x1 = nodes.X[cells.node(c, 1)], &x2 = nodes.X[cells.node(c, 2)];
+    const double two_area = (x1 - x0).x() * (x2 - x0).y() - (x2 - x0).x() * (x1 - x0).y();
+    LOOM_CHECK(two_area > 0.0, InputError, "grid cell " << c << " is degenerate or clockwise (area " << 0.5 * two_area << ")");
+    Mat32 g;
+    g << x1.y() - x2.y(), x2.x() - x1.x(), x2.y() - x0.y(), x0.x() - x2.x(), x0.y() - x1.y(), x1.x() - x0.x();
+    cells.gradient[c] = g / two_area;
+    cells.measure[c] = 0.5 * two_area;
+  }
+
+  // 3. Layout.
+  layout = GridLayout{};
+  layout.lo = layout.hi = nodes.X[0];
+  for (Index i = 0; i < nodes.size(); ++i) layout.lo = layout.lo.cwiseMin(nodes.X[i]), layout.hi = layout.hi.cwiseMax(nodes.X[i]);
+  layout.tolerance = 1e-9 * layout.width();
+  if (rectangle && rectangle->pattern != GridPattern::shifted) {
+    layout.structured = true;
+    layout.origin = rectangle->origin;
+    layout.nx = rectangle->nx, layout.ny = rectangle->ny;
+    layout.spacing = Vec2(rectangle->size.x() / rectangle->nx, rectangle->size.y() / rectangle->ny);
+#ifndef NDEBUG
+    // The generator numbers the two cells of square k = j nx + i as 2k and 2k + 1.
+    for (Index c = 0; c < cells.size(); ++c) {
+      const Vec2 centre = (nodes.X[cells.node(c, 0)] + nodes.X[cells.node(c, 1)] + nodes.X[cells.node(c, 2)]) / 3.0;
+      const Index k = c / 2;
+      const Vec2 square((k % layout.nx + 0.5) * layout.spacing.x(), (k / layout.nx + 0.5) * layout.spacing.y());
+      LOOM_ASSERT(((centre - layout.origin - square).cwiseQuotient(layout.spacing)).cwiseAbs().maxCoeff() < 0.5,
+                  "cell " << c << " is not in square " << k);
+    }
+#endif
+  } else {
+    build_buckets(nodes, cells, layout);
+  }
+}
+
+}  // namespace loom

@@ -1,0 +1,290 @@
+#include "engine/methods/mpm_method.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "engine/core/errors.hpp"
+#include "engine/drivers/newton.hpp"
+#include "engine/drivers/time_loop.hpp"
+#include "engine/io/files.hpp"
+#include "engine/io/progress.hpp"
+#include "engine/io/vtk_writer.hpp"
+#include "engine/methods/fem_newton_problem.hpp"
+#include "engine/methods/mpm_newton_problem.hpp"
+#include "engine/store/store_report.hpp"
+#include "systems/loads/apply_grid_loads.hpp"
+#include "systems/locate/activate_grid.hpp"
+#include "systems/locate/locate_points.hpp"
+#include "systems/map/interpolate_to_particles.hpp"
+#include "systems/map/project_to_grid.hpp"
+#include "systems/output/snapshot_particles.hpp"
+
+namespace loom {
+namespace {
+
+std::string file_stem(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+  return s;
+}
+
+}  // namespace
+
+MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
+  ctx_.scene = &scene_;
+  probe_plan_ = plan_particle_probes(scene_);
+  build_graph();
+}
+
+MpmRun::~MpmRun() = default;
+
+void MpmRun::build_graph() {
+  graph_ = std::make_unique<StepGraph>("mpm", ctx_, timers_);
+  StepGraph& g = *graph_;
+  g.name_store(&m_.layout, "grid_layout");
+  g.name_store(&m_.grid, "grid_cells");
+  g.name_store(&m_.grid_nodes, "grid_nodes");
+  g.name_store(&m_.activity, "grid_activity");
+  g.name_store(&m_.particles, "particles");
+  g.name_store(&m_.particle_loc, "particle_locations");
+  g.name_store(&m_.traction_points, "traction_points");
+  g.name_store(&m_.traction_loc, "traction_point_locations");
+  g.name_store(&m_.probe_points, "probe_points");
+  g.name_store(&m_.probe_loc, "probe_point_locations");
+  g.name_store(&m_.materials, "materials");
+  g.name_store(&m_.bc, "grid_conditions");
+  g.name_store(&m_.system, "linear_system");
+  g.name_store(&status_, "step_status");
+  g.name_store(&probe_writer_, "probes.csv");
+  g.name_store(&writer_, "vtk_writer");
+
+  // 1. Initialisation phase (Algorithm 1 lines 5-15).
+  g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
+  g.add_system("locate_traction_points", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.traction_points, m_.traction_loc);
+  g.add_system("locate_probe_points", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.probe_points, m_.probe_loc);
+  g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
+  g.add_system("project_to_grid", &project_to_grid, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
+  g.add_system("apply_grid_loads", &apply_grid_loads, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
+               m_.traction_loc, m_.bc);
+  // 2. Updated-Lagrangian solve on the grid (lines 17-42).
+  g.add_node("newton",
+             {{&m_.grid, &m_.activity, &m_.particles, &m_.materials, &m_.bc}, {&m_.grid_nodes, &m_.particle_loc, &m_.system, &status_}},
+             [this] { newton_node(); }, m_.osgs ? "assemble -> solve -> update until converged; OSGS projections before each assembly"
+                                                  : "assemble -> solve -> update until converged");
+  // 3. Convective phase (lines 44-49), on a converged state only.
+  const auto interpolate = g.add_system("interpolate_to_particles", &interpolate_to_particles, m_.grid, m_.grid_nodes, m_.particle_loc, m_.particles);
+  g.run_if(interpolate, &status_, [this] { return status_.converged; });
+  const auto move = g.add_system("move_traction_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.traction_loc, m_.traction_points);
+  g.run_if(move, &status_, [this] { return status_.converged; });
+  const auto tracers = g.add_system("move_probe_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.probe_loc, m_.probe_points);
+  g.run_if(tracers, &status_, [this] { return status_.converged; });
+  const auto probes = g.add_node("probes",
+                                 {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
+                                  {&probe_writer_}},
+                                 [this] { probes_node(); });
+  g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
+  const auto output = g.add_node("output", {{&m_.particles, &m_.materials, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.particle_loc}, {&writer_}},
+                                 [this] { output_node(); }, "snapshot here; the VTK files are written while the next step runs");
+  g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
+  g.build();
+}
+
+void MpmRun::newton_node() {
+  update_grid_kinematics(ctx_, m_.grid_nodes);  // Newmark predictor from the reset grid (lines 13-15)
+  MpmNewtonProblem problem(ctx_, m_, solver_, timers_);
+  NewtonSettings settings = newton_settings_of(scene_.solver);
+  if (options_.verbose && options_.log) {
+    *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
+    settings.log = options_.log;
+  }
+  const NewtonReport report = solve_newton(problem, settings, timers_);
+  status_.converged = report.converged;
+  status_.iterations = report.iterations;
+  status_.step_iterations += report.iterations;
+  status_.total_iterations += report.iterations;
+  status_.failure = report.failure;
+}
+
+void MpmRun::probes_node() {
+  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView{m_.grid, m_.activity, m_.grid_nodes},
+                           m_.system, m_.bc, status_.step_iterations, probe_values_);
+  if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
+}
+
+bool MpmRun::frame_due() const {
+  if (!options_.write_files || scene_.output.every == 0) return false;
+  return ctx_.step % scene_.output.every == 0 || ctx_.step == scene_.time.steps;
+}
+
+void MpmRun::output_node() {
+  last_frame_time_ = ctx_.t;
+  auto particles = std::make_shared<Frame>();
+  auto grid = std::make_shared<Frame>();
+  snapshot_particles(ctx_, m_.materials, m_.particles, *particles);
+  snapshot_grid(ctx_, m_.grid, m_.activity, m_.grid_nodes, m_.particle_loc, *grid);
+  std::ostringstream stem;
+  stem << file_stem(scene_.scene.name) << "_" << std::setw(6) << std::setfill('0') << particles->step;
+  const std::string dir = options_.output_directory, particle_file = stem.str() + "_particles.vtp", grid_file = stem.str() + "_grid.vtu";
+  writer_.submit([this, particles, grid, dir, particle_file, grid_file] {
+    ScopedTimer t(timers_, "output/write_vtk");
+    write_vtp(dir + "/" + particle_file, *particles);
+    write_vtu(dir + "/" + grid_file, *grid);
+    pvd_.add(particles->time, particle_file, 0);
+    pvd_.add(grid->time, grid_file, 1);
+  });
+}
+
+void MpmRun::describe(std::ostream& os) const {
+  const BodySpec& body = scene_.bodies[0];
+  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method mpm, element " << formulation_name(body.element);
+  if (m_.mixed) {
+    const char* names[] = {"none", "ppp", "asgs", "osgs"};
+    os << ", stabilisation " << names[int(body.stabilisation)];
+  }
+  os << ", " << body.particles_per_cell << " particles per body cell, grid " << (m_.layout.structured ? "structured (arithmetic locate)" : "unstructured (walk)") << "\n";
+  os << "stores:\n";
+  {
+    StoreReport r(os, "grid_nodes", m_.grid_nodes.size());
+    m_.grid_nodes.for_each_column(r);
+  }
+  {
+    StoreReport r(os, "grid_cells[tri3]", m_.grid.size());
+    m_.grid.for_each_column(r);
+  }
+  os << "    colours: " << m_.grid.n_colours() << "; active at t = 0: " << m_.activity.n_active_cells() << " cells\n";
+  {
+    StoreReport r(os, "particles", m_.particles.X.size());
+    m_.particles.for_each_column(r);
+  }
+  {
+    StoreReport r(os, "particle_locations", m_.particle_loc.size());
+    m_.particle_loc.for_each_column(r);
+  }
+  {
+    StoreReport r(os, "traction_points", m_.traction_points.X.size());
+    m_.traction_points.for_each_column(r);
+  }
+  os << "  linear_system: " << m_.system.dofs.n_dofs() << " dofs (" << m_.system.dofs.per_node << " per grid node), " << m_.system.dofs.n_free
+     << " free at t = 0, " << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
+     << (m_.linear_solver == LinearSolverKind::umfpack ? "umfpack" : m_.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)")
+     << "\n";
+  os << "  grid_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, " << m_.traction_points.X.size() << " traction points, loads "
+     << (m_.bc.has_loads ? "yes" : "none") << "\n";
+  graph_->print(os);
+}
+
+void MpmRun::open_output() {
+  const std::string& dir = options_.output_directory;
+  make_directories(dir);
+  const std::string stem = file_stem(scene_.scene.name);
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string(), ext = entry.path().extension().string();
+    if (name.rfind(stem + "_", 0) == 0 && (ext == ".vtu" || ext == ".vtp")) std::filesystem::remove(entry.path());
+  }
+  pvd_ = PvdWriter(dir, stem);
+  std::vector<std::string> names;
+  for (const auto& p : scene_.probes) names.push_back(p.name);
+  probe_writer_.open(dir + "/probes.csv", names);
+}
+
+// a_0 = M^-1 (f_ext - f_int) on the active grid at t = 0 (lumped mass), interpolated to the particles:
+// a load applied from t = 0 on is then integrated exactly by Newmark (free fall: 1/2 g t^2).
+void MpmRun::initial_acceleration() {
+  MpmNewtonProblem problem(ctx_, m_, solver_, timers_, false);
+  problem.assemble(false);
+  const int pn = m_.system.dofs.per_node;
+  Nodes<2>& g = m_.grid_nodes;
+  for (Index i = 0; i < g.size(); ++i) {
+    g.u[i].setZero();
+    if (!(g.lumped_mass[i] > 0.0)) continue;
+    for (int d = 0; d < 2; ++d)
+      g.a[i][d] = m_.system.dofs.kind[std::size_t(i * pn + d)] == DofKind::free ? -m_.system.residual_full[i * pn + d] / g.lumped_mass[i] : 0.0;
+  }
+  for (Index p = 0; p < m_.particles.X.size(); ++p) {
+    const Index* corner = m_.grid.cell_nodes(m_.particle_loc.cell[p]);
+    const Vec3& N = m_.particle_loc.N[p];
+    m_.particles.a[p] = N[0] * g.a[corner[0]] + N[1] * g.a[corner[1]] + N[2] * g.a[corner[2]];
+  }
+}
+
+void MpmRun::write_initial_state() {
+  ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
+  project_to_grid(ctx_, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
+  apply_grid_loads(ctx_, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points, m_.traction_loc, m_.bc);
+  if (m_.dynamic && scene_.time.initial_acceleration == InitialAcceleration::equilibrium) initial_acceleration();
+  status_ = StepStatus{};
+  status_.converged = true;
+  probes_node();
+  if (options_.write_files && scene_.output.every > 0) output_node();
+}
+
+RunSummary MpmRun::run() {
+  const auto start = std::chrono::steady_clock::now();
+  RunSummary summary;
+  summary.steps_requested = scene_.time.steps;
+  summary.cells = m_.grid.size();
+  if (options_.write_files) open_output();
+
+  Progress progress(scene_.time.steps, options_.progress);
+  TimeLoopCallbacks callbacks;
+  callbacks.step_done = [&](const StepContext& ctx, const StepStatus& st) { progress.update(ctx.step, ctx.t, st.step_iterations); };
+  callbacks.cut_back = [&](const StepContext& ctx, const StepStatus& st) {
+    if (options_.log) {
+      progress.finish();
+      *options_.log << "step " << ctx.step << " (t = " << ctx.t << ", dt = " << ctx.dt << "): " << st.failure << "; cutting the step back\n";
+    }
+  };
+  TimeLoopResult result;
+  auto stop = [&](const RunError& e) {
+    result.completed = false;
+    result.anomaly = true;
+    result.failed_step = ctx_.step;
+    result.failed_dt = ctx_.dt;
+    result.failure = e.what();
+  };
+  try {
+    write_initial_state();
+    result = run_time_loop(scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, ctx_, *graph_, status_, callbacks);
+    progress.finish();
+    if (!result.completed && options_.write_files && scene_.output.every > 0 && result.last_converged_time != last_frame_time_) {
+      // The particles hold the last converged state (a failed step never reaches the convective phase).
+      ctx_.step = result.failed_step;
+      ctx_.t = result.last_converged_time;
+      output_node();
+    }
+  } catch (const RunError& e) {
+    stop(e);
+  }
+  try {
+    writer_.wait();
+  } catch (const RunError& e) {
+    if (result.completed) stop(e);
+  }
+  progress.finish();
+
+  summary.dofs = m_.system.dofs.n_free;
+  summary.converged = result.completed;
+  summary.steps_done = result.last_converged_step;
+  summary.last_converged_step = result.last_converged_step;
+  summary.last_converged_time = result.completed ? double(scene_.time.steps) * scene_.time.dt : result.last_converged_time;
+  summary.newton_iterations = status_.total_iterations;
+  summary.cutbacks = result.cutbacks;
+  summary.linear_solver = solver_.backend();
+  if (!result.completed) {
+    std::ostringstream os;
+    if (result.anomaly)
+      os << "step " << result.failed_step << " stopped: " << result.failure;
+    else
+      os << "step " << result.failed_step << " did not converge after " << scene_.solver.max_cutbacks << " cut-backs (last dt "
+         << result.failed_dt << "): " << result.failure;
+    summary.failure = os.str();
+  }
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace loom

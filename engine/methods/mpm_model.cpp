@@ -1,0 +1,186 @@
+#include "engine/methods/mpm_model.hpp"
+
+#include <map>
+#include <sstream>
+
+#include "engine/core/errors.hpp"
+#include "engine/graph/step_context.hpp"
+#include "engine/mesh/background_grid.hpp"
+#include "engine/methods/build_mesh.hpp"
+#include "engine/methods/build_particles.hpp"
+#include "systems/locate/activate_grid.hpp"
+#include "systems/locate/locate_points.hpp"
+
+namespace loom {
+namespace {
+
+Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e) {
+  std::ostringstream where;
+  where << e.where << ": " << e.key;
+  bc.expressions.emplace_back(e.text, where.str());
+  return Index(bc.expressions.size() - 1);
+}
+
+std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b) {
+  if (!a) return b;
+  if (!b) return a;
+  ExpressionSpec e = *b;
+  e.text = "(" + a->text + ") + (" + b->text + ")";
+  return e;
+}
+
+// Prescribed dofs on the grid nodes of each [[boundary]] region; body-force expressions per body.
+void build_grid_conditions(const SceneSpec& scene, const Nodes<2>& nodes, const GridLayout& layout, BoundaryConditions<2>& bc) {
+  const int pn = bc.per_node;
+  const double tol = 1e-9 * std::max(1.0, layout.width());
+  std::map<Index, std::size_t> prescribed_at;
+  for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
+    const BoundarySpec& spec = scene.boundaries[k];
+    std::vector<Index> selected;
+    for (Index i = 0; i < nodes.size(); ++i) {
+      const Vec2& X = nodes.X[i];
+      if (X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol && X.y() >= spec.box_min.y() - tol &&
+          X.y() <= spec.box_max.y() + tol)
+        selected.push_back(i);
+    }
+    bc.boundary_names.push_back(spec.name);
+    bc.boundary_nodes.push_back(selected);
+    bc.boundary_prescribed.emplace_back();
+    const std::optional<ExpressionSpec>* comps[3] = {&spec.displacement.x, &spec.displacement.y, &spec.pressure};
+    const bool prescribes = spec.displacement.x || spec.displacement.y || spec.pressure;
+    LOOM_CHECK(!prescribes || !selected.empty(), InputError,
+               spec.region_where << ": error: boundary[" << k << "].region.box: method mpm prescribes values on grid nodes, and the region "
+                                 << "holds none (the grid spans [" << layout.lo.x() << ", " << layout.lo.y() << "] to [" << layout.hi.x()
+                                 << ", " << layout.hi.y() << "])");
+    for (int d = 0; d < 3; ++d) {
+      if (!*comps[d]) continue;
+      const Index expr = add_expression(bc, **comps[d]);
+      const Expression& g = bc.expressions[std::size_t(expr)];
+      for (Index i : selected) {
+        // The particles start undisplaced: a displacement must vanish at t = 0 where the grid applies it.
+        const double g0 = d < 2 ? g(0.0, nodes.X[i].x(), nodes.X[i].y()) : 0.0;
+        LOOM_CHECK(g0 == 0.0, InputError,
+                   (*comps[d])->where << ": error: " << (*comps[d])->key << ": method mpm moves the grid nodes by the increments of the "
+                                      << "prescribed displacement, which must vanish at t = 0 (the particles start undisplaced); it is "
+                                      << g0 << " at grid node (" << nodes.X[i].x() << ", " << nodes.X[i].y() << "): ramp it, e.g. \"t * ("
+                                      << (*comps[d])->text << ")\"");
+        const Index dof = i * pn + d;
+        auto it = prescribed_at.find(dof);
+        if (it != prescribed_at.end()) {
+          const std::string& other = bc.expressions[std::size_t(bc.prescribed[it->second].expression)].text();
+          LOOM_CHECK(other == g.text(), InputError,
+                     (*comps[d])->where << ": error: " << (*comps[d])->key << ": grid node (" << nodes.X[i].x() << ", " << nodes.X[i].y()
+                                        << ") is also prescribed by another boundary with \"" << other << "\"");
+          continue;
+        }
+        prescribed_at[dof] = bc.prescribed.size();
+        bc.prescribed.push_back({dof, i, expr});
+        bc.boundary_prescribed.back().push_back(Index(bc.prescribed.size() - 1));
+      }
+    }
+  }
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    std::array<Index, 2> expr{kNoIndex, kNoIndex};
+    const auto x = combine(scene.body_force.x, scene.bodies[b].body_force.x);
+    const auto y = combine(scene.body_force.y, scene.bodies[b].body_force.y);
+    if (x) expr[0] = add_expression(bc, *x);
+    if (y) expr[1] = add_expression(bc, *y);
+    if (x || y) bc.has_loads = true;
+    bc.body_force.push_back(expr);
+  }
+}
+
+RectangleSpec rectangle_of(const MeshSpec& m) {
+  RectangleSpec r;
+  r.origin = m.origin * m.scale, r.size = m.size * m.scale, r.nx = m.nx, r.ny = m.ny, r.pattern = m.pattern;
+  return r;
+}
+
+}  // namespace
+
+MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
+  const BodySpec& body = scene.bodies.at(0);
+  dynamic = scene.time.integrator == Integrator::newmark;
+  mixed = body.element == Formulation::p1p1_up;
+  osgs = mixed && body.stabilisation == Stabilisation::osgs;
+
+  // 1. Columns the scene needs.
+  grid_nodes.u_n.use(false);  // the grid starts every step undeformed: u is the step's displacement
+  grid_nodes.lumped_mass.use();
+  for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic);
+  grid_nodes.p.use(mixed);
+  grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs), grid_nodes.lumped_volume.use(osgs);
+  for (auto* c : {&particles.X, &particles.u}) c->use();
+  particles.mass.use(), particles.volume.use(), particles.F.use(), particles.body.use();
+  particles.v.use(dynamic), particles.a.use(dynamic);
+  particles.pressure.use(mixed);
+  particles.proj_u.use(osgs), particles.proj_p.use(osgs);
+  particle_loc.F.use();
+  traction_points.X.use(), traction_points.u.use(), traction_points.volume.use(), traction_points.body.use();
+  traction_loc.entity = "traction point";
+  probe_points.X.use(), probe_points.u.use();
+  probe_loc.entity = "probe point";
+
+  // 2. Grid, particles, traction points.
+  const MeshSpec& gm = scene.grid.mesh;
+  const MeshData grid_mesh = generate_body_mesh(gm);
+  const RectangleSpec rect = rectangle_of(gm);
+  const bool structured = gm.generator == MeshGenerator::rectangle && gm.distortion == 0.0;
+  try {
+    build_background_grid(grid_mesh, structured ? &rect : nullptr, body.element, grid_nodes, grid, layout);
+  } catch (const InputError& e) {
+    std::ostringstream os;
+    os << gm.where << ": error: grid: " << e.what();
+    throw InputError(os.str());
+  }
+  materials = body_materials(scene);
+  build_material_points(scene, particles);
+  bc.per_node = mixed ? 3 : 2;
+  build_traction_points(scene, traction_points, bc);
+  std::vector<Vec2> tracers;
+  for (const auto& p : scene.probes)
+    if (p.kind == ProbeKind::point) tracers.push_back(p.at);
+  probe_points.resize(Index(tracers.size()));
+  for (Index k = 0; k < probe_points.X.size(); ++k) probe_points.X[k] = tracers[std::size_t(k)];
+  build_grid_conditions(scene, grid_nodes, layout, bc);
+  bc.increments = true;
+  bc.target = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
+  bc.external = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
+  linear_solver = mixed ? LinearSolverKind::umfpack : scene.solver.linear;
+  LOOM_CHECK(!(mixed && scene.solver.linear == LinearSolverKind::cholmod), InputError,
+             scene.file << ": error: solver.linear: cholmod needs a symmetric positive definite tangent, and the mixed u-p system "
+                        << "(p1p1_up) is indefinite and, stabilised, unsymmetric; use umfpack or auto");
+
+  // 3. Where the points are, and the active grid.
+  StepContext ctx;
+  ctx.scene = &scene;
+  try {
+    locate_points(ctx, layout, grid, grid_nodes, particles, particle_loc);
+    locate_points(ctx, layout, grid, grid_nodes, traction_points, traction_loc);
+  } catch (const RunError& e) {
+    std::ostringstream os;
+    os << gm.where << ": error: grid: the body does not fit in the background grid at t = 0: " << e.what();
+    throw InputError(os.str());
+  }
+  for (std::size_t k = 0, tracer = 0; k < scene.probes.size(); ++k) {  // a probe outside the grid: its own key
+    if (scene.probes[k].kind != ProbeKind::point) continue;
+    const Vec2 at = probe_points.X[Index(tracer++)];
+    Vec3 N;
+    if (find_cell(layout, grid, grid_nodes, at, kNoIndex, N) == kNoIndex) {
+      std::ostringstream os;
+      os << scene.probes[k].where << ": error: probe[" << k << "].at: (" << at.x() << ", " << at.y()
+         << ") is outside the background grid (a point probe follows the material point at `at`)";
+      throw InputError(os.str());
+    }
+  }
+  try {
+    locate_points(ctx, layout, grid, grid_nodes, probe_points, probe_loc);
+  } catch (const RunError& e) {
+    std::ostringstream os;
+    os << gm.where << ": error: grid: a probe point is outside the background grid at t = 0: " << e.what();
+    throw InputError(os.str());
+  }
+  activate_grid(ctx, grid, particle_loc, bc, activity, system);
+}
+
+}  // namespace loom

@@ -1,0 +1,52 @@
+// The stores of an MPM run built from a scene (the mpm recipe's setup, shared with tests and benchmarks
+// that drive the systems themselves): the background grid (nodes, cells, layout, activity), the
+// material points and the traction points with their locations, materials, the grid's boundary
+// conditions, and the Newton system. The particles are located and the grid activated once here, so that
+// a body that does not fit in the grid is a scene error (exit 2) and `loom info` shows real sizes.
+#pragma once
+
+#include <vector>
+
+#include "engine/linalg/linear_solver.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/scene/scene_spec.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/grid_activity.hpp"
+#include "engine/store/grid_layout.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/point_locations.hpp"
+#include "engine/store/points.hpp"
+#include "systems/assemble/materials/material.hpp"
+
+namespace loom {
+
+struct MpmModel {
+  // Throws InputError for scene errors that need the grid or the particles.
+  explicit MpmModel(const SceneSpec& scene);
+
+  SceneSpec scene;
+  // Background grid
+  Nodes<2> grid_nodes;
+  Cells grid;
+  GridLayout layout;
+  GridActivity activity;
+  // Material points and the points that carry boundary tractions
+  Points<2> particles;
+  PointLocations particle_loc;
+  Points<2> traction_points;
+  PointLocations traction_loc;
+  // Point probes follow massless tracer points that move with the grid like the traction points.
+  Points<2> probe_points;
+  PointLocations probe_loc;
+
+  std::vector<BodyMaterial> materials;
+  BoundaryConditions<2> bc;  // on the grid's dofs
+  LinearSystem system;
+  bool dynamic = false;  // newmark
+  bool mixed = false;    // p1p1_up: three dofs per grid node
+  bool osgs = false;
+  LinearSolverKind linear_solver = LinearSolverKind::automatic;
+};
+
+}  // namespace loom

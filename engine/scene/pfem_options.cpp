@@ -1,0 +1,32 @@
+#include "engine/scene/pfem_options.hpp"
+
+#include <cstdlib>
+
+namespace loom {
+
+void read_pfem_options(SceneSpec& s, const TableReader& root) {
+  const auto remesh = root.table("remesh"), map = root.table("map");
+  if (s.scene.method != Method::pfem) {
+    if (remesh.present()) root.error("remesh", "[remesh] is used by method = \"pfem\" only");
+    if (map.present()) root.error("map", "[map] is used by method = \"pfem\" only");
+    return;
+  }
+  s.pfem.alpha = remesh.real("alpha");
+  s.pfem.every = int(remesh.integer("every"));
+  if (const auto l = remesh.expression("lchar"); l && remesh.has("lchar")) {
+    char* end = nullptr;
+    const double v = std::strtod(l->text.c_str(), &end);
+    if (l->text == "local") {
+      s.pfem.local = true;
+    } else if (end && *end == '\0' && end != l->text.c_str() && v > 0.0) {
+      s.pfem.local = false, s.pfem.lchar = v;
+    } else {
+      remesh.error("lchar", "expected a length > 0 or \"local\", got \"" + l->text + "\"");
+    }
+  }
+  s.pfem.btm = map.string("scheme") == "btm";
+  s.pfem.iso = int(map.integer("iso"));
+  if (!s.pfem.btm && map.has("iso") && s.pfem.iso != 0) map.error("iso", "iso is used by scheme = \"btm\" only (CPM copies F as it is)");
+}
+
+}  // namespace loom

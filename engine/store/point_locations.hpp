@@ -1,0 +1,49 @@
+// Where the points of a Points store sit in the MPM background grid at the start of the step: the
+// per-step quadrature data of material points (DESIGN §2 QuadPoints, with a variable number of points per
+// cell). Rebuilt by the locate system every (sub)step; the grid's shape gradients are constant per tri3
+// cell and live on the grid's Cells store.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/core/types.hpp"
+#include "engine/store/column.hpp"
+
+namespace loom {
+
+struct PointLocations {
+  std::string entity = "particle";  // what the points are, in messages
+
+  Column<Index> cell;  // grid cell holding the point at its position x_n = X + u_n
+  Column<Vec3> N;      // linear shape functions of the cell's corners at x_n (its barycentric coordinates)
+  Column<Mat3> F;      // material points: deformation gradient at the current Newton iterate
+
+  // Points grouped by cell (a counting sort, ascending point index within a cell): the points of cell c
+  // are by_cell[cell_offsets[c] .. cell_offsets[c + 1]). Scatters to the grid visit cells colour by colour
+  // and the points of a cell in this order, so that sums do not depend on the thread count.
+  std::vector<Index> by_cell;
+  std::vector<Index> cell_offsets;
+
+  PointLocations() {
+    cell.use();
+    N.use();
+  }
+
+  Index size() const { return cell.size(); }
+  Index count_in(Index c) const { return cell_offsets[std::size_t(c) + 1] - cell_offsets[std::size_t(c)]; }
+  const Index* points_in(Index c) const { return by_cell.data() + cell_offsets[std::size_t(c)]; }
+
+  void resize(Index n) {
+    cell.resize(n, kNoIndex);
+    N.resize(n, Vec3::Zero());
+    F.resize(n, Mat3::Identity());
+  }
+
+  template <class Visit>
+  void for_each_column(Visit&& f) const {
+    f("cell", cell), f("N", N), f("F", F);
+  }
+};
+
+}  // namespace loom

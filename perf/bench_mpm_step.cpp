@@ -1,0 +1,50 @@
+// A whole MPM step (the mpm recipe's graph) on the dynamic Cook's membrane, ASGS, Newton to 1e-6: time per
+// step and its split by system (counters in ms per step, from the run's own timers) against the number of
+// particles, 1 and 2 threads. Each iteration builds the run (not timed) and runs 4 steps.
+#include <benchmark/benchmark.h>
+
+#include "engine/methods/mpm_method.hpp"
+#include "perf/bench_support.hpp"
+
+namespace loom {
+namespace {
+
+constexpr int kSteps = 4;
+
+void BM_MpmStep(benchmark::State& state) {
+  const SceneSpec scene = bench::cooks_dynamic(state.range(0), kSteps);
+  std::map<std::string, TimerStats> totals;
+  long long particles = 0, iterations = 0, newton = 0;
+  bench::with_threads(int(state.range(1)), [&] {
+    for (auto _ : state) {
+      state.PauseTiming();
+      RunOptions options;
+      options.write_files = false;
+      options.progress = false;
+      MpmRun run(scene, options);
+      particles = run.model().particles.X.size();
+      state.ResumeTiming();
+      const RunSummary s = run.run();
+      state.PauseTiming();
+      if (!s.converged) state.SkipWithError(s.failure.c_str());
+      newton += s.newton_iterations;
+      for (const auto& [name, t] : run.timers().snapshot()) totals[name].total += t.total;
+      ++iterations;
+      state.ResumeTiming();
+    }
+  });
+  const double steps = double(iterations) * kSteps;
+  state.SetItemsProcessed(int64_t(double(particles) * steps));
+  state.counters["particles"] = double(particles);
+  state.counters["newton_per_step"] = double(newton) / steps;
+  for (const char* name : {"locate_particles", "activate_grid", "project_to_grid", "apply_grid_loads", "newton", "newton/assemble",
+                           "newton/solve", "interpolate_to_particles", "probes"})
+    state.counters[std::string(name) + "_ms"] = 1e3 * totals[name].total / steps;
+}
+
+BENCHMARK(BM_MpmStep)->ArgsProduct({{1000, 10000, 100000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace
+}  // namespace loom
+
+BENCHMARK_MAIN();

@@ -1,0 +1,32 @@
+// Shared set-up of the MPM benchmarks: runs a body on a given number of oneTBB threads, and builds the
+// dynamic Cook's membrane (scenes/cooks_membrane_mpm_dynamic.toml) with about `particles` material points
+// (3 per body cell; the body mesh is refined to reach the count, the grid stays h = 0.1).
+#pragma once
+
+#include <oneapi/tbb/global_control.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/scene/scene_loader.hpp"
+
+namespace loom::bench {
+
+template <class Body>
+void with_threads(int threads, Body&& body) {
+  oneapi::tbb::global_control limit(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  oneapi::tbb::task_arena arena(threads);
+  arena.execute(body);
+}
+
+inline SceneSpec cooks_dynamic(long long particles, int steps) {
+  const int ny = std::max(2, int(std::lround(std::sqrt(double(particles) / (6.0 * 1.6)))));
+  const int nx = int(std::lround(1.6 * ny));
+  const std::string file = std::string(LOOM_SOURCE_DIR) + "/scenes/cooks_membrane_mpm_dynamic.toml";
+  return load_scene(file, {"body[0].mesh.divisions=[" + std::to_string(nx) + "," + std::to_string(ny) + "]", "body[0].particles_per_cell=3",
+                           "time.steps=" + std::to_string(steps), "output.every=0", "solver.residual_relative=1e-6"});
+}
+
+}  // namespace loom::bench

@@ -1,0 +1,174 @@
+#include "systems/assemble/assemble_grid_system.hpp"
+
+#include <atomic>
+
+#include "engine/core/parallel.hpp"
+#include "systems/assemble/elements/displacement_point.hpp"
+#include "systems/assemble/elements/mixed_up_point.hpp"
+#include "systems/update/grid_newmark.hpp"
+
+namespace loom {
+namespace {
+
+double dof_value(const Nodes<2>& g, Index dof, int pn) {
+  const Index node = dof / pn;
+  const int comp = dof % pn;
+  return comp < 2 ? g.u[node][comp] : g.p[node];
+}
+
+// Scatters a cell's local residual (with the Dirichlet lift) and tangent; local dofs are the scatter's.
+template <int NE>
+void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, bool tangent,
+                  Eigen::Matrix<double, NE, 1>& r, const Eigen::Matrix<double, NE, NE>& K, LinearSystem& system) {
+  const int pn = system.dofs.per_node;
+  Eigen::Matrix<double, NE, 1> gap = Eigen::Matrix<double, NE, 1>::Zero();
+  bool lagging = false;
+  for (int k = 0; k < NE; ++k) {
+    const Index dof = sc.cell_dof(entry, k);
+    if (system.dofs.kind[std::size_t(dof)] != DofKind::prescribed) continue;
+    gap[k] = bc.target[dof] - dof_value(g, dof, pn);
+    lagging = lagging || gap[k] != 0.0;
+  }
+  if (lagging) r += K * gap;
+  for (int a = 0; a < NE; ++a) system.residual_full[sc.cell_dof(entry, a)] += r[a];
+  if (!tangent) return;
+  double* values = system.pattern.matrix.valuePtr();
+  for (int a = 0; a < NE; ++a)
+    for (int b = 0; b < NE; ++b) {
+      const Index s = sc.matrix_slot(entry, a, b);
+      if (s != kNoIndex) values[s] += K(a, b);
+    }
+}
+
+struct Args {
+  const StepContext& ctx;
+  const GridAssemblyOptions& opt;
+  const std::vector<BodyMaterial>& materials;
+  const Cells& grid;
+  const GridActivity& act;
+  const Nodes<2>& g;
+  const Points<2>& particles;
+  const BoundaryConditions<2>& bc;
+  PointLocations& loc;
+  LinearSystem& system;
+  std::atomic<Index>& inverted;
+  bool dynamic;
+};
+
+template <class Body>
+void for_each_active_cell_by_colour(const GridActivity& act, Body&& body) {
+  for (std::size_t k = 0; k + 1 < act.colour_offsets.size(); ++k)
+    for_each_in(act.active_by_colour.data() + act.colour_offsets[k], act.colour_offsets[k + 1] - act.colour_offsets[k], body);
+}
+
+Vec2 body_force_of(const BoundaryConditions<2>& bc, Index p) {
+  return bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];
+}
+
+void assemble_displacement(const Args& x) {
+  for_each_active_cell_by_colour(x.act, [&](Index c) {
+    NodalVectors<3> du;
+    for (int a = 0; a < 3; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
+    ElementVector<3> r = ElementVector<3>::Zero();
+    ElementMatrix<3> K = ElementMatrix<3>::Zero();
+    const Index* pts = x.loc.points_in(c);
+    for (Index k = 0; k < x.loc.count_in(c); ++k) {
+      const Index p = pts[k];
+      const Mat3& F_n = x.particles.F[p];
+      const double Vn = x.particles.volume[p] * F_n.determinant();
+      const bool ok = std::visit(
+          [&](const auto& m) { return add_displacement_point<3>(m, du, x.grid.gradient[c], Vn, F_n, x.loc.F[p], r, &K); },
+          x.materials[std::size_t(x.particles.body[p])].model);
+      if (!ok) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
+    }
+    scatter_cell<6>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+  });
+}
+
+void assemble_mixed(const Args& x) {
+  const double dt = x.ctx.dt;
+  for_each_active_cell_by_colour(x.act, [&](Index c) {
+    UpCellValues cell;
+    for (int a = 0; a < 3; ++a) {
+      const Index i = x.grid.node(c, a);
+      cell.du.row(a) = x.g.u[i].transpose();
+      cell.p[a] = x.g.p[i];
+      if (x.dynamic) cell.a.row(a) = newmark_acceleration(x.g, i, dt).transpose();
+      if (x.g.proj_u.used()) cell.proj_u.row(a) = x.g.proj_u[i].transpose(), cell.proj_p[a] = x.g.proj_p[i];
+    }
+    UpVector r = UpVector::Zero();
+    UpMatrix K = UpMatrix::Zero();
+    PppAccumulator ppp;
+    const Index* pts = x.loc.points_in(c);
+    double inv_mu = 0.0;
+    bool use_ppp = false;
+    for (Index k = 0; k < x.loc.count_in(c); ++k) {
+      const Index p = pts[k];
+      const Index body = x.particles.body[p];
+      const BodySpec& spec = x.ctx.scene->bodies[std::size_t(body)];
+      const NeoHookeSplit& m = std::get<NeoHookeSplit>(x.materials[std::size_t(body)].model);
+      UpPoint pt;
+      pt.N = x.loc.N[p];
+      pt.dN = x.grid.gradient[c];
+      pt.V0 = x.particles.volume[p];
+      pt.F_n = x.particles.F[p];
+      const double Vn = pt.V0 * pt.F_n.determinant();
+      pt.rho_n = x.particles.mass[p] / Vn;
+      pt.b = body_force_of(x.bc, p);
+      UpStabilisation st;
+      st.vms = spec.stabilisation == Stabilisation::asgs || spec.stabilisation == Stabilisation::osgs;
+      st.projected = spec.stabilisation == Stabilisation::osgs;
+      st.tau1 = spec.tau_c1 * x.grid.measure[c] / (2.0 * m.mu);  // eq 21, h^2 = cell area
+      st.tau2 = 2.0 * spec.tau_c2 * m.mu;
+      st.c_a = x.dynamic ? newmark_stiffness(dt) : 0.0;
+      if (!add_up_point(m, st, pt, cell, x.loc.F[p], r, &K)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
+      if (spec.stabilisation == Stabilisation::ppp) ppp.add(pt.N, Vn), inv_mu = 1.0 / m.mu, use_ppp = true;
+    }
+    if (use_ppp) ppp.apply(inv_mu, cell.p, r, &K);
+    scatter_cell<9>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+  });
+}
+
+}  // namespace
+
+AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOptions& opt,
+                                    const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity,
+                                    const Nodes<2>& grid_nodes, const Points<2>& particles, const BoundaryConditions<2>& bc,
+                                    PointLocations& loc, LinearSystem& system) {
+  auto& A = system.pattern.matrix;
+  if (opt.tangent) std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+  system.residual_full.setZero();
+  std::atomic<Index> inverted{0};
+  const bool dynamic = ctx.scene->time.integrator == Integrator::newmark;
+  const Args args{ctx, opt, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, dynamic};
+  if (system.dofs.per_node == 3) assemble_mixed(args);
+  else assemble_displacement(args);
+
+  // Nodal terms on active nodes: lumped inertia (Newmark) and external loads.
+  const DofMap& dofs = system.dofs;
+  const int pn = dofs.per_node;
+  const bool inertia = dynamic && opt.inertia;
+  const double c_a = dynamic ? newmark_stiffness(ctx.dt) : 0.0;
+  double* values = A.valuePtr();
+  for_each_index(grid_nodes.size(), [&](Index i) {
+    if (dofs.kind[std::size_t(i) * std::size_t(pn)] == DofKind::absent) return;
+    const Vec2 a = inertia ? newmark_acceleration(grid_nodes, i, ctx.dt) : Vec2::Zero();
+    for (int d = 0; d < 2; ++d) {
+      const Index dof = dofs.dof(i, d);
+      double r = -bc.external[dof];
+      if (inertia) {
+        r += grid_nodes.lumped_mass[i] * a[d];
+        const Index eq = dofs.equation[std::size_t(dof)];
+        if (opt.tangent && eq != kNoIndex) values[system.pattern.diagonal_slot[std::size_t(eq)]] += grid_nodes.lumped_mass[i] * c_a;
+      }
+      system.residual_full[dof] += r;
+    }
+  });
+  for_each_index(dofs.n_dofs(), [&](Index dof) {
+    const Index eq = dofs.equation[std::size_t(dof)];
+    if (eq != kNoIndex) system.residual[eq] = system.residual_full[dof];
+  });
+  return {inverted.load()};
+}
+
+}  // namespace loom

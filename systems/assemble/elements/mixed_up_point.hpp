@@ -1,0 +1,159 @@
+// Mixed u-p kernel of one material point on a linear background cell (seed 003 eqs 8-26), written in the
+// "positive" form of the pressure equation, (p/kappa - (J - 1), q) (the seed's form times -1, so that the
+// stabilisation adds positive terms). Local dofs node-major [u_x, u_y, p]: 3a + i, 3a + 2.
+//
+// Kinematics (updated Lagrangian on the grid, which starts the step undeformed at the configuration x_n):
+//   dF = I + sum_a du_a (x) dN_a,  F = dF F_n,  G_a = F_n^T dN_a (gradient in the reference), dN = grad N at x_n.
+// Galerkin terms (eqs 10, 16-17), weights V_0 (reference volume) so that they derive from
+// Pi = int psi_dev(F) + p (J - 1) - p^2 / (2 kappa) dV_0 and the coupling blocks are each other's negative
+// transpose (B = B* in eq 18):
+//   r_u(a,i) += V_0 [P_dev + p_h J F^-T]_ij G_a,j          r_p(a) += V_0 N_a (p_h / kappa - (J - 1))
+// VMS stabilisation (eqs 19-26), ASGS (P~ = I) or OSGS (P~ = I - P_h, the projections given as data,
+// seed 003 §5: lagged, not linearised). For linear cells the second derivatives vanish and the adjoint is
+// L*(w, q) = (grad q, div w + q / kappa); the residuals are
+//   R_u = rho (b - a_h) + grad p_h,   R_p = (J - 1) - p_h / kappa,
+// and the terms sum_K (tau P~[R], L*(V))_K are evaluated on the grid's configuration x_n (weights
+// V_n, gradients dN): the seed's extra terms with grad p^ (B^G, K^GG, ...) come from differentiating the
+// current-configuration gradients and are of the order of the step's displacement; leaving them out keeps
+// the Newton tangent exact for this residual.
+//   r_u(a,i) += V_n tau2 P~[R_p] dN_a,i      r_p(a) += V_n (tau1 P~[R_u] . dN_a + tau2 P~[R_p] N_a / kappa)
+// with tau1 = c1 h^2 / (2 mu), tau2 = 2 c2 mu (eq 21). The grid acceleration a_h = sum N_a a_a follows
+// Newmark, d a_a / d du_a = c_a = 1 / (beta dt^2) (0 for static runs).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "engine/core/types.hpp"
+#include "systems/assemble/materials/neo_hooke_split.hpp"
+
+namespace loom {
+
+using UpVector = Eigen::Matrix<double, 9, 1>;
+using UpMatrix = Eigen::Matrix<double, 9, 9>;
+
+// The cell's nodal values (rows: corners) at the Newton iterate.
+struct UpCellValues {
+  Mat32 du = Mat32::Zero();      // step displacement
+  Vec3 p = Vec3::Zero();         // pressure
+  Mat32 a = Mat32::Zero();       // Newmark acceleration
+  Mat32 proj_u = Mat32::Zero();  // OSGS projections
+  Vec3 proj_p = Vec3::Zero();
+};
+
+struct UpPoint {
+  Vec3 N;          // shape functions at x_n
+  Mat32 dN;        // their gradients (the cell's)
+  double V0 = 0;   // reference volume
+  Mat3 F_n;        // deformation gradient at the start of the step
+  double rho_n = 0;  // density at x_n: m / V_n
+  Vec2 b = Vec2::Zero();  // body force per unit mass
+};
+
+struct UpStabilisation {
+  bool vms = false;        // ASGS or OSGS
+  bool projected = false;  // OSGS: subtract the projections
+  double tau1 = 0, tau2 = 0;
+  double c_a = 0;          // d a_h / d du per unit N (1 / (beta dt^2)), 0 for static runs
+};
+
+// Adds the point's contribution; F receives the deformation gradient. False if J <= 0.
+inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, const UpPoint& pt, const UpCellValues& cell,
+                         Mat3& F, UpVector& r, UpMatrix* K) {
+  Mat3 dF = Mat3::Identity();
+  dF.topLeftCorner<2, 2>() += cell.du.transpose() * pt.dN;
+  F = dF * pt.F_n;
+  const double J = F.determinant();
+  if (!(J > 0.0)) return false;
+  const Mat3 Finv = F.inverse();
+  const Mat3 JFinvT = J * Finv.transpose();
+  const Mat32 G = pt.dN * pt.F_n.topLeftCorner<2, 2>();
+  const double p_h = pt.N.dot(cell.p);
+  const double ik = material.inv_kappa;
+
+  // 1. Galerkin.
+  Mat3 P;
+  Mat9 A;
+  if (K ? !material.deviatoric_stress_tangent(F, P, A) : !material.deviatoric_stress(F, P)) return false;
+  P += p_h * JFinvT;
+  const Mat32 f = pt.V0 * G * P.topLeftCorner<2, 2>().transpose();  // f(a, i) = P_ij G_a,j
+  const Mat32 dJ = G * JFinvT.topLeftCorner<2, 2>().transpose();    // dJ(b, k) = J F^-T_kl G_b,l = dJ/d du_b,k
+  for (int a = 0; a < 3; ++a) {
+    r[3 * a] += f(a, 0);
+    r[3 * a + 1] += f(a, 1);
+    r[3 * a + 2] += pt.V0 * pt.N[a] * (p_h * ik - (J - 1.0));
+  }
+  if (K) {
+    Mat9 B;
+    NeoHookeSplit::volume_tangent(F, B);
+    A += p_h * B;
+    for (int i = 0; i < 2; ++i)
+      for (int k = 0; k < 2; ++k) {
+        Eigen::Matrix2d C;  // C_jl = A_ijkl
+        C << A(ij(i, 0), ij(k, 0)), A(ij(i, 0), ij(k, 1)), A(ij(i, 1), ij(k, 0)), A(ij(i, 1), ij(k, 1));
+        const Eigen::Matrix3d block = pt.V0 * G * C * G.transpose();
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) (*K)(3 * a + i, 3 * b + k) += block(a, b);
+      }
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) {
+        for (int i = 0; i < 2; ++i) {
+          (*K)(3 * a + i, 3 * b + 2) += pt.V0 * dJ(a, i) * pt.N[b];  // d f(a,i) / d p_b = V_0 (J F^-T G_a)_i N_b
+          (*K)(3 * a + 2, 3 * b + i) -= pt.V0 * pt.N[a] * dJ(b, i);
+        }
+        (*K)(3 * a + 2, 3 * b + 2) += pt.V0 * pt.N[a] * pt.N[b] * ik;
+      }
+  }
+  if (!stab.vms) return true;
+
+  // 2. Variational subgrid scales on the grid configuration.
+  const double Vn = pt.V0 * pt.F_n.determinant();
+  const Vec2 grad_p = pt.dN.transpose() * cell.p;
+  Vec2 Ru = pt.rho_n * (pt.b - cell.a.transpose() * pt.N) + grad_p;
+  double Rp = (J - 1.0) - p_h * ik;
+  if (stab.projected) Ru -= cell.proj_u.transpose() * pt.N, Rp -= pt.N.dot(cell.proj_p);
+  const double t1 = stab.tau1 * Vn, t2 = stab.tau2 * Vn;
+  for (int a = 0; a < 3; ++a) {
+    r[3 * a] += t2 * Rp * pt.dN(a, 0);
+    r[3 * a + 1] += t2 * Rp * pt.dN(a, 1);
+    r[3 * a + 2] += t1 * Ru.dot(pt.dN.row(a)) + t2 * Rp * pt.N[a] * ik;
+  }
+  if (!K) return true;
+  // OSGS: P_h nearly reproduces the continuous linear field p_h / kappa of R_p (up to the lumping), so its
+  // part of P~[R_p] = R_p - P_h[R_p] nearly vanishes, and so does its derivative. Keeping it in the tangent
+  // (the ASGS tangent) overshoots the smooth pressure modes by 1 / (1 - tau2 / kappa): Newton diverged on
+  // the static Cook's membrane at nu = 0.33 (tau2 / kappa = 0.77). The acceleration term of R_u is kept:
+  // dropping it too (P_h[rho a_h] ~ rho a_h) made the dynamic Cook's membrane take 35 iterations, not 26.
+  const double keep = stab.projected ? 0.0 : 1.0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      for (int i = 0; i < 2; ++i) {
+        for (int k = 0; k < 2; ++k) (*K)(3 * a + i, 3 * b + k) += t2 * pt.dN(a, i) * dJ(b, k);
+        (*K)(3 * a + i, 3 * b + 2) -= keep * t2 * pt.dN(a, i) * pt.N[b] * ik;
+        (*K)(3 * a + 2, 3 * b + i) += -t1 * pt.rho_n * stab.c_a * pt.N[b] * pt.dN(a, i) + t2 * ik * pt.N[a] * dJ(b, i);
+      }
+      (*K)(3 * a + 2, 3 * b + 2) += t1 * pt.dN.row(a).dot(pt.dN.row(b)) - keep * t2 * ik * ik * pt.N[a] * pt.N[b];
+    }
+  return true;
+}
+
+// Polynomial pressure projection (Dohrmann-Bochev; seed 003 ref [47]) of one cell, with its points as the
+// quadrature: (1/mu) int (p - Pi_0 p)(q - Pi_0 q) = (1/mu) (M - m m^T / V) with M_ab = sum V_n N_a N_b,
+// m_a = sum V_n N_a, V = sum V_n. Added to the pressure rows (positive form).
+struct PppAccumulator {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  Vec3 m = Vec3::Zero();
+  double V = 0.0;
+  void add(const Vec3& N, double Vn) { M += Vn * N * N.transpose(), m += Vn * N, V += Vn; }
+  void apply(double inv_mu, const Vec3& p, UpVector& r, UpMatrix* K) const {
+    if (!(V > 0.0)) return;
+    const Eigen::Matrix3d S = inv_mu * (M - m * m.transpose() / V);
+    const Vec3 Sp = S * p;
+    for (int a = 0; a < 3; ++a) {
+      r[3 * a + 2] += Sp[a];
+      if (K)
+        for (int b = 0; b < 3; ++b) (*K)(3 * a + 2, 3 * b + 2) += S(a, b);
+    }
+  }
+};
+
+}  // namespace loom

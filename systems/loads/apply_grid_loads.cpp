@@ -1,0 +1,64 @@
+#include "systems/loads/apply_grid_loads.hpp"
+
+#include "engine/core/errors.hpp"
+#include "engine/core/parallel.hpp"
+#include "systems/locate/locate_points.hpp"
+#include "systems/map/project_to_grid.hpp"
+
+namespace loom {
+
+void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
+                      const Points<2>& particles, const PointLocations& particle_loc, const Points<2>& traction_points,
+                      const PointLocations& traction_loc, BoundaryConditions<2>& bc) {
+  const int pn = bc.per_node;
+  // 1. Prescribed values.
+  for (const auto& p : bc.prescribed) {
+    const Vec2& X = grid_nodes.X[p.node];
+    const Expression& g = bc.expressions[std::size_t(p.expression)];
+    const bool displacement = p.dof % pn < 2;
+    bc.target[p.dof] = displacement ? g(ctx.t, X.x(), X.y()) - g(ctx.t - ctx.dt, X.x(), X.y()) : g(ctx.t, X.x(), X.y());
+  }
+  bc.external.setZero();
+  if (!bc.has_loads) return;
+
+  // 2. Body forces at the particles.
+  const Index n = particles.X.size();
+  bc.particle_body_force.resize(std::size_t(n));
+  // Expressions are not thread-safe (muparser): evaluated serially, once per step.
+  for (Index p = 0; p < n; ++p) {
+    const auto& e = bc.body_force[std::size_t(particles.body[p])];
+    Vec2 b = Vec2::Zero();
+    for (int d = 0; d < 2; ++d)
+      if (e[std::size_t(d)] != kNoIndex) b[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, particles.X[p].x(), particles.X[p].y());
+    bc.particle_body_force[std::size_t(p)] = b;
+  }
+  for_each_occupied_cell_by_colour(grid, particle_loc, [&](Index c) {
+    const Index* pts = particle_loc.points_in(c);
+    for (Index k = 0; k < particle_loc.count_in(c); ++k) {
+      const Index p = pts[k];
+      const Vec2 f = particles.mass[p] * bc.particle_body_force[std::size_t(p)];
+      for (int a = 0; a < 3; ++a)
+        for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += particle_loc.N[p][a] * f[d];
+    }
+  });
+
+  // 3. Tractions at the traction points.
+  for (Index q = 0; q < traction_points.X.size(); ++q) {
+    const auto& e = bc.traction_point_expression[std::size_t(q)];
+    const Vec2& X = traction_points.X[q];
+    Vec2 t = Vec2::Zero();
+    for (int d = 0; d < 2; ++d)
+      if (e[std::size_t(d)] != kNoIndex) t[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, X.x(), X.y());
+    const Vec2 x = traction_points.position(q);
+    Vec3 N;
+    const Index c = host_active_cell(grid, grid_nodes, activity, traction_loc.cell[q], x, N);
+    LOOM_CHECK(c != kNoIndex, RunError,
+               "traction point " << q << " (reference position (" << X.x() << ", " << X.y() << ")) at (" << x.x() << ", " << x.y()
+                                 << ") has no grid cell holding particles next to it at step " << ctx.step << ": its load cannot reach the body");
+    const Vec2 f = traction_points.volume[q] * t;
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];
+  }
+}
+
+}  // namespace loom

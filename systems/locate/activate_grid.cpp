@@ -1,0 +1,54 @@
+#include "systems/locate/activate_grid.hpp"
+
+namespace loom {
+
+void activate_grid(const StepContext&, const Cells& grid, const PointLocations& particle_loc, const BoundaryConditions<2>& bc,
+                   GridActivity& activity, LinearSystem& system) {
+  const Index n_cells = grid.size();
+  // 1. Has the active set changed?
+  bool changed = activity.cell_active.size() != std::size_t(n_cells) || activity.version == 0;
+  if (!changed)
+    for (Index c = 0; c < n_cells && !changed; ++c) changed = activity.cell_active[std::size_t(c)] != char(particle_loc.count_in(c) > 0);
+  if (!changed) return;
+
+  // 2. Active cells (ascending and by colour) and nodes.
+  activity.cell_active.assign(std::size_t(n_cells), 0);
+  activity.active_index.assign(std::size_t(n_cells), kNoIndex);
+  activity.active_cells.clear();
+  const Index n_nodes = Index(bc.target.size()) / bc.per_node;
+  activity.node_active.assign(std::size_t(n_nodes), 0);
+  for (Index c = 0; c < n_cells; ++c) {
+    if (particle_loc.count_in(c) == 0) continue;
+    activity.cell_active[std::size_t(c)] = 1;
+    activity.active_index[std::size_t(c)] = Index(activity.active_cells.size());
+    activity.active_cells.push_back(c);
+    for (int a = 0; a < grid.stride; ++a) activity.node_active[std::size_t(grid.node(c, a))] = 1;
+  }
+  activity.colour_offsets.assign(std::size_t(grid.n_colours()) + 1, 0);
+  activity.active_by_colour.clear();
+  for (Index k = 0; k < grid.n_colours(); ++k) {
+    for (Index s = grid.colour_offsets[std::size_t(k)]; s < grid.colour_offsets[std::size_t(k) + 1]; ++s)
+      if (activity.cell_active[std::size_t(grid.by_colour[std::size_t(s)])]) activity.active_by_colour.push_back(grid.by_colour[std::size_t(s)]);
+    activity.colour_offsets[std::size_t(k) + 1] = Index(activity.active_by_colour.size());
+  }
+  ++activity.version;
+  ++activity.rebuilds;
+
+  // 3. Dofs: absent on inactive nodes, prescribed where a boundary prescribes them, free otherwise.
+  const int pn = bc.per_node;
+  std::vector<DofKind> kinds(std::size_t(n_nodes) * std::size_t(pn), DofKind::free);
+  for (Index i = 0; i < n_nodes; ++i)
+    if (!activity.node_active[std::size_t(i)])
+      for (int d = 0; d < pn; ++d) kinds[std::size_t(i) * std::size_t(pn) + std::size_t(d)] = DofKind::absent;
+  for (const auto& p : bc.prescribed)
+    if (kinds[std::size_t(p.dof)] == DofKind::free) kinds[std::size_t(p.dof)] = DofKind::prescribed;
+  system.dofs.build(pn, std::move(kinds));
+
+  // 4. Pattern over the active cells and their scatter.
+  build_pattern({&grid}, system.dofs, system.pattern, {&activity.active_cells});
+  system.scatter.resize(1);
+  build_scatter(grid, system.dofs, system.pattern, system.scatter[0], &activity.active_cells);
+  system.resize_vectors();
+}
+
+}  // namespace loom

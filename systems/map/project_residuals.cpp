@@ -1,0 +1,54 @@
+#include "systems/map/project_residuals.hpp"
+
+#include "engine/core/parallel.hpp"
+#include "systems/update/grid_newmark.hpp"
+
+namespace loom {
+
+void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Cells& grid,
+                       const GridActivity& activity, const Points<2>& particles, const PointLocations& loc,
+                       const BoundaryConditions<2>& bc, Nodes<2>& g) {
+  const bool dynamic = ctx.scene->time.integrator == Integrator::newmark;
+  for_each_index(g.size(), [&](Index i) { g.proj_u[i].setZero(), g.proj_p[i] = 0.0; });
+  for (std::size_t k = 0; k + 1 < activity.colour_offsets.size(); ++k) {
+    const Index* cells = activity.active_by_colour.data() + activity.colour_offsets[k];
+    for_each_in(cells, activity.colour_offsets[k + 1] - activity.colour_offsets[k], [&](Index c) {
+      const Index* corner = grid.cell_nodes(c);
+      const Mat32& dN = grid.gradient[c];
+      Vec3 p;
+      Mat32 a = Mat32::Zero(), du;
+      for (int i = 0; i < 3; ++i) {
+        p[i] = g.p[corner[i]];
+        du.row(i) = g.u[corner[i]].transpose();
+        if (dynamic) a.row(i) = newmark_acceleration(g, corner[i], ctx.dt).transpose();
+      }
+      const Vec2 grad_p = dN.transpose() * p;
+      const Index* pts = loc.points_in(c);
+      for (Index n = 0; n < loc.count_in(c); ++n) {
+        const Index q = pts[n];
+        const Vec3& N = loc.N[q];
+        const Mat3& F_n = particles.F[q];
+        Mat3 dF = Mat3::Identity();
+        dF.topLeftCorner<2, 2>() += du.transpose() * dN;
+        const double J = (dF * F_n).determinant();
+        const double Vn = particles.volume[q] * F_n.determinant();
+        const double rho = particles.mass[q] / Vn;
+        const double ik = std::get<NeoHookeSplit>(materials[std::size_t(particles.body[q])].model).inv_kappa;
+        const Vec2 b = bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(q)];
+        const Vec2 Ru = rho * (b - a.transpose() * N) + grad_p;
+        const double Rp = (J - 1.0) - N.dot(p) * ik;
+        for (int i = 0; i < 3; ++i) {
+          const double w = Vn * N[i];
+          g.proj_u[corner[i]] += w * Ru;
+          g.proj_p[corner[i]] += w * Rp;
+        }
+      }
+    });
+  }
+  for_each_index(g.size(), [&](Index i) {
+    const double w = g.lumped_volume[i];  // sum_p V_n N_I, from project_to_grid
+    if (w > 0.0) g.proj_u[i] /= w, g.proj_p[i] /= w;
+  });
+}
+
+}  // namespace loom

@@ -1,0 +1,45 @@
+// Probes of an MPM run at the converged state, in the order of SceneSpec::probes:
+//  reaction: sum over the boundary's prescribed grid dofs of the component of r = f_int + M a - f_ext;
+//  point:    displacement component of the tracer point that started at `at` and moves with the grid's
+//            displacement increments (the traction points' kinematics): the material point at `at`;
+//  newton:   Newton iterations of the step (summed over cut-back sub-steps);
+//  extent:   largest or smallest current coordinate of the particles along a component;
+//  pressure_jump: mean |p_a - p_b| over the sides of the active grid (each once), the nodal pressure
+//            oscillation of the mixed formulation (seed 003 Fig 5a);
+//  energy:   kinetic sum m v^2 / 2 and elastic sum V_0 psi(F) of the particles, or their total (psi of the
+//            mixed formulation: the deviatoric energy plus p^2 / (2 kappa)).
+#pragma once
+
+#include <vector>
+
+#include "engine/graph/step_context.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/grid_activity.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/points.hpp"
+#include "systems/assemble/materials/material.hpp"
+
+namespace loom {
+
+struct ParticleProbePlan {
+  std::vector<ProbeSpec> probes;
+  std::vector<Index> tracer;  // point probes: their tracer point (in probe order); others kNoIndex
+};
+
+ParticleProbePlan plan_particle_probes(const SceneSpec& scene);
+
+// The grid stores are read by pressure_jump probes only.
+struct GridView {
+  const Cells& grid;
+  const GridActivity& activity;
+  const Nodes<2>& nodes;
+};
+
+void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
+                              const Points<2>& particles, const Points<2>& probe_points, const GridView& grid,
+                              const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                              std::vector<double>& values);
+
+}  // namespace loom

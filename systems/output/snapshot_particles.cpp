@@ -1,0 +1,91 @@
+#include "systems/output/snapshot_particles.hpp"
+
+#include <cmath>
+
+#include "engine/core/parallel.hpp"
+
+namespace loom {
+
+bool particle_stress(const BodyMaterial& material, const Mat3& F, bool mixed, double pressure, Mat3& sigma) {
+  if (!mixed) return cauchy_stress(material.model, F, sigma);
+  Mat3 P_dev;
+  if (!std::get<NeoHookeSplit>(material.model).deviatoric_stress(F, P_dev)) return false;
+  sigma = P_dev * F.transpose() / F.determinant() + pressure * Mat3::Identity();
+  return true;
+}
+
+void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Points<2>& particles, Frame& frame) {
+  frame.step = ctx.step;
+  frame.time = ctx.t;
+  const Index n = particles.X.size();
+  const std::size_t un = std::size_t(n);
+  const bool mixed = particles.pressure.used(), dynamic = particles.v.used();
+  frame.points.assign(3 * un, 0.0);
+  frame.connectivity.clear(), frame.offsets.clear(), frame.cell_types.clear(), frame.cell_arrays.clear();
+  FrameArray displacement{"displacement", 3, std::vector<double>(3 * un, 0.0)};
+  FrameArray velocity{"velocity", 3, std::vector<double>(dynamic ? 3 * un : 0, 0.0)};
+  FrameArray pressure{"pressure", 1, std::vector<double>(un, 0.0)};
+  FrameArray J{"J", 1, std::vector<double>(un, 0.0)};
+  FrameArray stress{"stress", 9, std::vector<double>(9 * un, 0.0)};
+  FrameArray von_mises{"von_mises", 1, std::vector<double>(un, 0.0)};
+  for_each_index(n, [&](Index p) {
+    const std::size_t k = std::size_t(p);
+    const Vec2 x = particles.position(p);
+    frame.points[3 * k] = x.x(), frame.points[3 * k + 1] = x.y();
+    for (int d = 0; d < 2; ++d) {
+      displacement.values[3 * k + std::size_t(d)] = particles.u[p][d];
+      if (dynamic) velocity.values[3 * k + std::size_t(d)] = particles.v[p][d];
+    }
+    const Mat3& F = particles.F[p];
+    Mat3 sigma = Mat3::Constant(kNaN);
+    particle_stress(materials[std::size_t(particles.body[p])], F, mixed, mixed ? particles.pressure[p] : 0.0, sigma);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) stress.values[9 * k + std::size_t(3 * i + j)] = sigma(i, j);
+    const double mean = sigma.trace() / 3.0;
+    pressure.values[k] = mixed ? particles.pressure[p] : mean;
+    J.values[k] = F.determinant();
+    von_mises.values[k] = std::sqrt(1.5 * (sigma - mean * Mat3::Identity()).squaredNorm());
+  });
+  frame.point_arrays.clear();
+  frame.point_arrays.push_back(std::move(displacement));
+  if (dynamic) frame.point_arrays.push_back(std::move(velocity));
+  for (auto* a : {&pressure, &J, &stress, &von_mises}) frame.point_arrays.push_back(std::move(*a));
+}
+
+void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<2>& g,
+                   const PointLocations& particle_loc, Frame& frame) {
+  frame.step = ctx.step;
+  frame.time = ctx.t;
+  const std::size_t n = std::size_t(g.size());
+  frame.points.assign(3 * n, 0.0);
+  FrameArray displacement{"displacement", 3, std::vector<double>(3 * n, 0.0)};
+  FrameArray velocity{"velocity", 3, std::vector<double>(g.v.used() ? 3 * n : 0, 0.0)};
+  FrameArray pressure{"pressure", 1, std::vector<double>(g.p.used() ? n : 0, 0.0)};
+  FrameArray mass{"mass", 1, std::vector<double>(n, 0.0)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Index node = Index(i);
+    frame.points[3 * i] = g.X[node].x(), frame.points[3 * i + 1] = g.X[node].y();
+    for (int d = 0; d < 2; ++d) {
+      displacement.values[3 * i + std::size_t(d)] = g.u[node][d];
+      if (g.v.used()) velocity.values[3 * i + std::size_t(d)] = g.v[node][d];
+    }
+    if (g.p.used()) pressure.values[i] = g.p[node];
+    mass.values[i] = g.lumped_mass[node];
+  }
+  frame.connectivity.clear(), frame.offsets.clear(), frame.cell_types.clear();
+  FrameArray count{"particles", 1, {}};
+  for (Index c : activity.active_cells) {
+    for (int a = 0; a < 3; ++a) frame.connectivity.push_back(grid.node(c, a));
+    frame.offsets.push_back(Index(frame.connectivity.size()));
+    frame.cell_types.push_back(kVtkTriangle);
+    count.values.push_back(particle_loc.count_in(c));
+  }
+  frame.point_arrays.clear();
+  frame.point_arrays.push_back(std::move(displacement));
+  if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
+  if (!pressure.values.empty()) frame.point_arrays.push_back(std::move(pressure));
+  frame.point_arrays.push_back(std::move(mass));
+  frame.cell_arrays = {std::move(count)};
+}
+
+}  // namespace loom

@@ -1,0 +1,34 @@
+#include "systems/solve/solve_grid_step.hpp"
+
+#include "engine/core/parallel.hpp"
+
+namespace loom {
+
+LinearSolveStatus solve_grid_step(const Nodes<2>& g, const BoundaryConditions<2>& bc, LinearSolve& solver, LinearSystem& system,
+                                  Timers& timers) {
+  {
+    ScopedTimer t(timers, "newton/solve/factorize");
+    if (system.dofs.n_free > 0 && !solver.factorize(system.pattern)) return LinearSolveStatus::singular;
+  }
+  {
+    ScopedTimer t(timers, "newton/solve/back_substitute");
+    if (system.dofs.n_free > 0) {
+      Eigen::VectorXd rhs = -system.residual;
+      if (!solver.solve(rhs, system.increment) || !system.increment.allFinite()) return LinearSolveStatus::singular;
+    }
+  }
+  const DofMap& dofs = system.dofs;
+  const int pn = dofs.per_node;
+  for_each_index(dofs.n_dofs(), [&](Index dof) {
+    const Index node = dof / pn;
+    const int comp = dof % pn;
+    switch (dofs.kind[std::size_t(dof)]) {
+      case DofKind::free: system.increment_full[dof] = system.increment[dofs.equation[std::size_t(dof)]]; break;
+      case DofKind::prescribed: system.increment_full[dof] = bc.target[dof] - (comp < 2 ? g.u[node][comp] : g.p[node]); break;
+      case DofKind::absent: system.increment_full[dof] = 0.0; break;
+    }
+  });
+  return LinearSolveStatus::ok;
+}
+
+}  // namespace loom

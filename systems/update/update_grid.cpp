@@ -1,0 +1,26 @@
+#include "systems/update/update_grid.hpp"
+
+#include "engine/core/parallel.hpp"
+#include "systems/update/grid_newmark.hpp"
+
+namespace loom {
+
+void update_grid_iterate(const StepContext& ctx, double step, const LinearSystem& system, Nodes<2>& g) {
+  const int pn = system.dofs.per_node;
+  for_each_index(g.size(), [&](Index i) {
+    for (int d = 0; d < 2; ++d) g.u[i][d] += step * system.increment_full[i * pn + d];
+    if (pn == 3) g.p[i] += step * system.increment_full[i * pn + 2];
+  });
+  update_grid_kinematics(ctx, g);
+}
+
+void update_grid_kinematics(const StepContext& ctx, Nodes<2>& g) {
+  if (!g.a.used()) return;
+  for_each_index(g.size(), [&](Index i) {
+    if (!(g.lumped_mass[i] > 0.0)) return;
+    g.a[i] = newmark_acceleration(g, i, ctx.dt);
+    g.v[i] = newmark_velocity(g, i, g.a[i], ctx.dt);
+  });
+}
+
+}  // namespace loom

@@ -1,0 +1,16 @@
+// Moves the Newton iterate of an MPM grid: u (and p) += step * du on every dof, then the grid's Newmark
+// velocity and acceleration follow (seed 003 Algorithm 1 lines 28-31, corrector).
+#pragma once
+
+#include "engine/graph/step_context.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/nodes.hpp"
+
+namespace loom {
+
+void update_grid_iterate(const StepContext& ctx, double step, const LinearSystem& system, Nodes<2>& grid_nodes);
+
+// v and a of every node with mass from its step displacement (Newmark); no-op for static runs.
+void update_grid_kinematics(const StepContext& ctx, Nodes<2>& grid_nodes);
+
+}  // namespace loom
