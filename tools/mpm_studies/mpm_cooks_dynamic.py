@@ -2,7 +2,7 @@
 """Dynamic Cook's membrane on the mixed MPM (seed 003 §6.2, Fig 6): u_y(A) histories for 3, 12 and 33
 particles per cell (ASGS) and for PPP, ASGS, OSGS at 33 particles per cell, plus the unstabilised run that
 fails early. Writes docs/mpm/cooks_dynamic.csv (histories), cooks_dynamic_runs.csv (one row per run) and
-cooks_dynamic.png. About 20 minutes on two cores; --quick runs 40 steps with fewer particles."""
+cooks_dynamic.png. About 7 minutes on two idle cores; --quick runs 40 steps with fewer particles."""
 import argparse
 import pathlib
 
