@@ -38,5 +38,15 @@ TEST(Stress, PfemOneAndTwoThreadsAgree) {
                 scene_path("constrained_block_pfem.toml"), {"body[0].alpha_s=1.0", "output.every=0"}}});
 }
 
+TEST(Stress, MpmOneAndTwoThreadsAgree) {
+  check_cases("determinism (1 vs 2 threads)",
+              {{"mpm: dynamic Cook's membrane, ASGS, 12 per cell, 40 steps", scene_path("cooks_membrane_mpm_dynamic.toml"),
+                {"time.steps=40", "output.every=0"}},
+               {"mpm: dynamic Cook's membrane, OSGS, 3 per cell, 20 steps", scene_path("cooks_membrane_mpm_dynamic.toml"),
+                {"body[0].stabilisation=\"osgs\"", "body[0].particles_per_cell=3", "time.steps=20", "output.every=0"}},
+               {"mpm: static Cook's membrane 32x32, PPP", scene_path("cooks_membrane_mpm_static.toml"),
+                {"body[0].stabilisation=\"ppp\"", "output.every=0"}}});
+}
+
 }  // namespace
 }  // namespace loom::stress

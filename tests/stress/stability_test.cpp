@@ -264,6 +264,5 @@ TEST(Stress, LongDynamicRunsNeitherBlowUpNorGainEnergy) {
   }
 }
 
-// 6. 1000 remeshes of a resting body (nothing may change): needs PFEM, which loom does not have yet.
 }  // namespace
 }  // namespace loom::stress
