@@ -9,7 +9,6 @@
 #include "engine/mesh/boundary_edges.hpp"
 
 namespace loom {
-namespace {
 
 Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e) {
   std::ostringstream where;
@@ -18,7 +17,6 @@ Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e) {
   return Index(bc.expressions.size() - 1);
 }
 
-// Sum of the global and the per-body body force (both per unit mass).
 std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b) {
   if (!a) return b;
   if (!b) return a;
@@ -26,8 +24,6 @@ std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, co
   e.text = "(" + a->text + ") + (" + b->text + ")";
   return e;
 }
-
-}  // namespace
 
 BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,

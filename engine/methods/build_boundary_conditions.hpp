@@ -4,6 +4,7 @@
 // naming the scene position.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "engine/linalg/dof_map.hpp"
@@ -23,6 +24,12 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
                                                 int dofs_per_node, bool tie_mid_nodes = false,
                                                 const std::vector<TractionEdge<2>>* frozen_tractions = nullptr);
+
+// Compiles expression `e` into bc.expressions (named by its scene position for error messages); returns
+// its index.
+Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e);
+// Sum of the global and the per-body body force (both per unit mass): "(a) + (b)", or whichever is given.
+std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b);
 
 // Dof kinds of the run: prescribed where a boundary prescribes a displacement component, tied for the
 // ties of `bc`; with three

@@ -7,27 +7,13 @@
 #include "engine/graph/step_context.hpp"
 #include "engine/mesh/background_grid.hpp"
 #include "engine/methods/build_mesh.hpp"
+#include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_particles.hpp"
 #include "systems/locate/activate_grid.hpp"
 #include "systems/locate/locate_points.hpp"
 
 namespace loom {
 namespace {
-
-Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e) {
-  std::ostringstream where;
-  where << e.where << ": " << e.key;
-  bc.expressions.emplace_back(e.text, where.str());
-  return Index(bc.expressions.size() - 1);
-}
-
-std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b) {
-  if (!a) return b;
-  if (!b) return a;
-  ExpressionSpec e = *b;
-  e.text = "(" + a->text + ") + (" + b->text + ")";
-  return e;
-}
 
 // Prescribed dofs on the grid nodes of each [[boundary]] region; body-force expressions per body.
 void build_grid_conditions(const SceneSpec& scene, const Nodes<2>& nodes, const GridLayout& layout, BoundaryConditions<2>& bc) {

@@ -25,6 +25,7 @@ LinearSolveStatus solve_grid_step(const Nodes<2>& g, const BoundaryConditions<2>
     switch (dofs.kind[std::size_t(dof)]) {
       case DofKind::free: system.increment_full[dof] = system.increment[dofs.equation[std::size_t(dof)]]; break;
       case DofKind::prescribed: system.increment_full[dof] = bc.target[dof] - (comp < 2 ? g.u[node][comp] : g.p[node]); break;
+      case DofKind::tied:  // PFEM mid-nodes only; the grid has none
       case DofKind::absent: system.increment_full[dof] = 0.0; break;
     }
   });
