@@ -8,9 +8,9 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/drivers/newton.hpp"
+#include "engine/drivers/run_driver.hpp"
 #include "engine/drivers/time_loop.hpp"
 #include "engine/io/files.hpp"
-#include "engine/io/progress.hpp"
 #include "engine/io/vtk_writer.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/store/store_report.hpp"
@@ -197,60 +197,21 @@ RunSummary FemRun::run() {
   for (const auto& c : m_.cells) summary.cells += c.size();
   if (options_.write_files) open_output();
 
-  Progress progress(scene_.time.steps, options_.progress);
-  TimeLoopCallbacks callbacks;
-  callbacks.step_done = [&](const StepContext& ctx, const StepStatus& st) { progress.update(ctx.step, ctx.t, st.step_iterations); };
-  callbacks.cut_back = [&](const StepContext& ctx, const StepStatus& st) {
-    if (options_.log) {
-      progress.finish();
-      *options_.log << "step " << ctx.step << " (t = " << ctx.t << ", dt = " << ctx.dt << "): " << st.failure << "; cutting the step back\n";
-    }
+  const RunSchedule schedule{scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, options_.progress, options_.log};
+  RunHooks hooks;
+  hooks.write_initial_state = [&] { write_initial_state(); };
+  hooks.write_last_converged_state = [&](int failed_step, double last_converged_time) {
+    if (!options_.write_files || scene_.output.every <= 0 || last_converged_time == last_frame_time_) return;
+    // Keep the last converged state for inspection (commit left it in u_n and F_n); it may lie inside
+    // the failed step after converged sub-steps, so it takes that step's number.
+    ctx_.step = failed_step;
+    ctx_.t = last_converged_time;
+    output_node();
   };
-  TimeLoopResult result;
-  auto stop = [&](const RunError& e) {  // an anomaly outside the time loop (step 0, frame writing)
-    result.completed = false;
-    result.anomaly = true;
-    result.failed_step = ctx_.step;
-    result.failed_dt = ctx_.dt;
-    result.failure = e.what();
-  };
-  try {
-    write_initial_state();
-    result = run_time_loop(scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, ctx_, *graph_, status_, callbacks);
-    progress.finish();
-    if (!result.completed && options_.write_files && scene_.output.every > 0 && result.last_converged_time != last_frame_time_) {
-      // Keep the last converged state for inspection (commit left it in u_n and F_n); it may lie inside
-      // the failed step after converged sub-steps, so it takes that step's number.
-      ctx_.step = result.failed_step;
-      ctx_.t = result.last_converged_time;
-      output_node();
-    }
-  } catch (const RunError& e) {
-    stop(e);
-  }
-  try {
-    writer_.wait();
-  } catch (const RunError& e) {
-    if (result.completed) stop(e);
-  }
-  progress.finish();
-
-  summary.converged = result.completed;
-  summary.steps_done = result.last_converged_step;
-  summary.last_converged_step = result.last_converged_step;
-  summary.last_converged_time = result.completed ? double(scene_.time.steps) * scene_.time.dt : result.last_converged_time;
-  summary.newton_iterations = status_.total_iterations;
-  summary.cutbacks = result.cutbacks;
+  hooks.wait_for_writer = [&] { writer_.wait(); };
+  const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
+  summarise_run(result, status_, schedule, summary);
   summary.linear_solver = solver_.backend();
-  if (!result.completed) {
-    std::ostringstream os;
-    if (result.anomaly)
-      os << "step " << result.failed_step << " stopped: " << result.failure;
-    else
-      os << "step " << result.failed_step << " did not converge after " << scene_.solver.max_cutbacks << " cut-backs (last dt "
-         << result.failed_dt << "): " << result.failure;
-    summary.failure = os.str();
-  }
   wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.wall_seconds = wall_;
   return summary;

@@ -1,0 +1,62 @@
+#include "engine/drivers/run_driver.hpp"
+
+#include <sstream>
+
+#include "engine/core/errors.hpp"
+#include "engine/io/progress.hpp"
+
+namespace loom {
+
+TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks) {
+  Progress progress(schedule.steps, schedule.progress);
+  TimeLoopCallbacks callbacks;
+  callbacks.step_done = [&](const StepContext& c, const StepStatus& st) { progress.update(c.step, c.t, st.step_iterations); };
+  callbacks.cut_back = [&](const StepContext& c, const StepStatus& st) {
+    if (schedule.log) {
+      progress.finish();
+      *schedule.log << "step " << c.step << " (t = " << c.t << ", dt = " << c.dt << "): " << st.failure << "; cutting the step back\n";
+    }
+  };
+  TimeLoopResult result;
+  auto stop = [&](const RunError& e) {
+    result.completed = false;
+    result.anomaly = true;
+    result.failed_step = ctx.step;
+    result.failed_dt = ctx.dt;
+    result.failure = e.what();
+  };
+  try {
+    hooks.write_initial_state();
+    result = run_time_loop(schedule.dt, schedule.steps, schedule.max_cutbacks, ctx, graph, status, callbacks);
+    progress.finish();
+    if (!result.completed) hooks.write_last_converged_state(result.failed_step, result.last_converged_time);
+  } catch (const RunError& e) {
+    stop(e);
+  }
+  try {
+    hooks.wait_for_writer();
+  } catch (const RunError& e) {
+    if (result.completed) stop(e);
+  }
+  progress.finish();
+  return result;
+}
+
+void summarise_run(const TimeLoopResult& result, const StepStatus& status, const RunSchedule& schedule, RunSummary& summary) {
+  summary.converged = result.completed;
+  summary.steps_done = result.last_converged_step;
+  summary.last_converged_step = result.last_converged_step;
+  summary.last_converged_time = result.completed ? double(schedule.steps) * schedule.dt : result.last_converged_time;
+  summary.newton_iterations = status.total_iterations;
+  summary.cutbacks = result.cutbacks;
+  if (result.completed) return;
+  std::ostringstream os;
+  if (result.anomaly)
+    os << "step " << result.failed_step << " stopped: " << result.failure;
+  else
+    os << "step " << result.failed_step << " did not converge after " << schedule.max_cutbacks << " cut-backs (last dt "
+       << result.failed_dt << "): " << result.failure;
+  summary.failure = os.str();
+}
+
+}  // namespace loom

@@ -1,0 +1,37 @@
+// What every recipe's run does around its step graph (fem, pfem, mpm): the time loop with the progress
+// display and the cut-back log, the last converged state written when the run fails (so that the output
+// ends where the run did), the frame writer drained, and the convergence fields of the run summary. A
+// RunError outside the time loop (frame 0, the writer) ends the run as an anomaly, reported like a step
+// that stopped.
+#pragma once
+
+#include <functional>
+#include <ostream>
+
+#include "engine/drivers/run_summary.hpp"
+#include "engine/drivers/time_loop.hpp"
+
+namespace loom {
+
+struct RunSchedule {
+  double dt = 0.0;
+  int steps = 0;
+  int max_cutbacks = 0;
+  bool progress = true;          // one-line progress display on stderr
+  std::ostream* log = nullptr;   // cut-back messages; nullptr: silent
+};
+
+struct RunHooks {
+  std::function<void()> write_initial_state;
+  // After a failed run: write the last converged state, reached at `last_converged_time` within or before
+  // step `failed_step`, if the recipe writes frames and has not written that one.
+  std::function<void(int failed_step, double last_converged_time)> write_last_converged_state;
+  std::function<void()> wait_for_writer;
+};
+
+TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks);
+
+// Fills converged, steps_done, last_converged_step/time, newton_iterations, cutbacks and failure.
+void summarise_run(const TimeLoopResult& result, const StepStatus& status, const RunSchedule& schedule, RunSummary& summary);
+
+}  // namespace loom
