@@ -89,7 +89,10 @@ void FemRun::build_graph() {
 
 void FemRun::remesh_node() {
   last_remesh_ = remesh_model(pfem_settings_, topology_, m_, timers_);
-  if (last_remesh_.changed) probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
+  if (last_remesh_.changed) {
+    probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
+    last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
+  }
 }
 
 void FemRun::newton_node() {
@@ -106,6 +109,14 @@ void FemRun::newton_node() {
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
+  // A cell the alpha shape has just added (or removed) changes a nearly incompressible body at once: say so,
+  // it is the usual reason why a PFEM step fails where the previous ones converged.
+  if (!report.converged && pfem_ && last_change_step_ == ctx_.step) {
+    std::ostringstream os;
+    os << "; the remesh before this step changed the connectivity (body area " << last_change_.area_before << " -> "
+       << last_change_.area_after << ", " << last_change_.rejected << " triangles rejected by the alpha test)";
+    status_.failure += os.str();
+  }
 }
 
 void FemRun::probes_node() {

@@ -72,6 +72,8 @@ class FemRun final : public MethodRun {
   PfemSettings pfem_settings_;
   PfemTopology topology_;
   RemeshReport last_remesh_;
+  RemeshReport last_change_;   // the last remesh that changed the connectivity, at step last_change_step_
+  int last_change_step_ = -1;
 
   // Per-run workspace
   LinearSolve solver_;

@@ -18,6 +18,7 @@ for f in smoke_work_precision.png smoke_error_dofs.png smoke_breakdown.png smoke
   head -c 8 "$out/smoke/$f" | od -An -c | grep -q 'P   N   G' || { echo "$f is not a PNG"; exit 1; }
 done
 "$loom" run scenes/homogeneous_compression.toml --out "$out/profiled" --quiet --profile --set output.every=0
-tools/profile_folded "$out/profiled/timings.json" | grep -q '^step 1;newton;iteration 1;solve;factorize [0-9]*$' \
-  || { echo "profile_folded: no 'step 1;newton;iteration 1;solve;factorize' stack"; exit 1; }
+tools/profile_folded "$out/profiled/timings.json" > "$out/folded" || { echo "profile_folded failed"; exit 1; }
+grep -q '^step 1;newton;iteration 1;solve;factorize [0-9]*$' "$out/folded" \
+  || { echo "profile_folded: no 'step 1;newton;iteration 1;solve;factorize' stack; its output:"; head -20 "$out/folded"; exit 1; }
 echo "tools ok"

@@ -179,5 +179,25 @@ TEST(ConstrainedBlockPfem, Tri6FailsAtAStepThatResetsTheMidNodes) {
   }
 }
 
+// Finer meshes stop much earlier (16x8: after step 60), and not for the mid-nodes: the constant l_char of
+// the scene (0.2 mm, chosen for the 8x4 mesh) lets the alpha test (R < 1.1 l_char = 0.22 mm) admit the
+// triangle that bridges the kink at the indenter's edge once it is small enough (R = 0.2188 mm at step 60
+// on 16x8), and the new cell in the nearly incompressible block stops Newton. The failure says so; with
+// l_char scaled to the mesh (0.1 mm) the same run goes on to step 160.
+TEST(ConstrainedBlockPfem, Tri6OnAFinerMeshStopsWhenTheAlphaShapeBridgesTheIndenterKink) {
+  const std::vector<std::string> mesh = {"body[0].mesh.divisions=[16,8]", "time.steps=70"};
+  const Curve p = pfem("tri6", "", mesh);
+  ASSERT_FALSE(p.summary.converged);
+  EXPECT_EQ(p.summary.last_converged_step, 60);
+  EXPECT_EQ(p.first_change, -1);  // every converged step kept the connectivity
+  EXPECT_NE(p.summary.failure.find("the remesh before this step changed the connectivity"), std::string::npos) << p.summary.failure;
+  std::vector<std::string> scaled = mesh;
+  scaled.push_back("remesh.lchar=0.1");
+  const Curve q = pfem("tri6", "", scaled);
+  EXPECT_TRUE(q.summary.converged) << q.summary.failure;  // 70 steps (observed: up to step 160)
+  std::printf("[constrained block pfem] tri6 16x8: l_char 0.2 mm stops after step %d (%s); l_char 0.1 mm runs %d steps\n",
+              p.summary.last_converged_step, p.summary.failure.c_str(), q.summary.last_converged_step);
+}
+
 }  // namespace
 }  // namespace loom
