@@ -1,5 +1,6 @@
 #include "engine/io/files.hpp"
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 
@@ -27,6 +28,13 @@ void make_directories(const std::string& path) {
   std::error_code ec;
   std::filesystem::create_directories(path, ec);
   LOOM_CHECK(!ec, RunError, "cannot create the output directory " << path << ": " << ec.message());
+}
+
+std::string file_stem(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+  return s;
 }
 
 }  // namespace loom

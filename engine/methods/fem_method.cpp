@@ -19,17 +19,6 @@
 #include "systems/update/commit_step.hpp"
 
 namespace loom {
-namespace {
-
-std::string file_stem(const std::string& name) {
-  std::string s = name;
-  for (char& c : s)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
-  return s;
-}
-
-}  // namespace
-
 
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {

@@ -43,16 +43,16 @@ void map_state(const std::vector<Vec2>& old_positions, const std::vector<Mat3>& 
   const Index n_new = Index(new_positions.size());
   new_F.resize(std::size_t(n_new));
   stats = MapStats{};
-  std::vector<Index> todo;
+  std::vector<Index> pending;
   for (Index k = 0; k < n_new; ++k) {
     if (copy_from[std::size_t(k)] >= 0) {
       new_F[std::size_t(k)] = old_F[std::size_t(copy_from[std::size_t(k)])];
       ++stats.kept;
     } else {
-      todo.push_back(k);
+      pending.push_back(k);
     }
   }
-  if (todo.empty()) return;
+  if (pending.empty()) return;
   LOOM_CHECK(!old_positions.empty(), RunError, "map: no old quadrature points to transfer the state from");
 
   // Background triangulation of the old points (Fig 3).
@@ -69,9 +69,9 @@ void map_state(const std::vector<Vec2>& old_positions, const std::vector<Mat3>& 
   // one a query costs O(sqrt n), O(n^1.5) for all. So the queries are sorted along a Hilbert curve and
   // each walks from the face of the previous one, in fixed chunks (a chunk starts from the default face):
   // the result of a query does not depend on the thread count.
-  std::vector<Kernel::Point_2> query(todo.size());
-  for (std::size_t j = 0; j < todo.size(); ++j) query[j] = point(new_positions[std::size_t(todo[j])]);
-  std::vector<std::size_t> order(todo.size());
+  std::vector<Kernel::Point_2> query(pending.size());
+  for (std::size_t j = 0; j < pending.size(); ++j) query[j] = point(new_positions[std::size_t(pending[j])]);
+  std::vector<std::size_t> order(pending.size());
   for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
   using SortTraits = CGAL::Spatial_sort_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Kernel::Point_2>::type>;
   CGAL::spatial_sort(order.begin(), order.end(), SortTraits(CGAL::make_property_map(query)));
@@ -83,7 +83,7 @@ void map_state(const std::vector<Vec2>& old_positions, const std::vector<Mat3>& 
     Delaunay::Face_handle hint;
     const std::size_t end = std::min(order.size(), std::size_t(chunk + 1) * std::size_t(kQueryChunk));
     for (std::size_t j = std::size_t(chunk) * std::size_t(kQueryChunk); j < end; ++j) {
-      const Index k = todo[order[j]];
+      const Index k = pending[order[j]];
       const Vec2& x = new_positions[std::size_t(k)];
       const auto& p = query[order[j]];
       auto copy_nearest = [&](std::atomic<Index>& counter) {

@@ -1,22 +1,13 @@
 #include "systems/solve/solve_grid_step.hpp"
 
 #include "engine/core/parallel.hpp"
+#include "systems/solve/solve_linear_step.hpp"
 
 namespace loom {
 
 LinearSolveStatus solve_grid_step(const Nodes<2>& g, const BoundaryConditions<2>& bc, LinearSolve& solver, LinearSystem& system,
                                   Timers& timers) {
-  {
-    ScopedTimer t(timers, "newton/solve/factorize");
-    if (system.dofs.n_free > 0 && !solver.factorize(system.pattern)) return LinearSolveStatus::singular;
-  }
-  {
-    ScopedTimer t(timers, "newton/solve/back_substitute");
-    if (system.dofs.n_free > 0) {
-      Eigen::VectorXd rhs = -system.residual;
-      if (!solver.solve(rhs, system.increment) || !system.increment.allFinite()) return LinearSolveStatus::singular;
-    }
-  }
+  if (solve_free_dofs(solver, system, timers) != LinearSolveStatus::ok) return LinearSolveStatus::singular;
   const DofMap& dofs = system.dofs;
   const int pn = dofs.per_node;
   for_each_index(dofs.n_dofs(), [&](Index dof) {

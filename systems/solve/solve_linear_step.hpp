@@ -12,6 +12,10 @@ namespace loom {
 
 enum class LinearSolveStatus { ok, singular };
 
+// Factorizes the assembled tangent and solves K du = -r for the free dofs into system.increment (timed as
+// newton/solve/factorize and newton/solve/back_substitute); shared by the fem/pfem and mpm steps.
+LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers);
+
 LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
                                     LinearSystem& system, Timers& timers);
 
