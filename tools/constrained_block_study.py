@@ -4,11 +4,13 @@ curves of the three elements and of the p1p1_uphi stabilisation sweep (Fig 8), t
 measure against alpha_s (Fig 9), and the tri6 / p1p1_uphi comparison (Fig 10) on the paper's 4x8 mesh and
 refined ones.
 
-Every curve is one `loom run` of the committed scene with --set overrides; nothing is tuned. Writes under
+Every curve is one `loom run` of a committed scene with --set overrides; nothing is tuned. All cases run the
+FEM scene except tri6_eq24_ties: the PFEM scene with remeshing off (remesh.every > steps), i.e. tri6 with the
+seed's eq-24 ties of boundary mid-nodes and nothing else of PFEM (the paper's FEM-TRI6 as read in the README). Writes under
 OUT (default docs/constrained_block/):
   curves.csv                 long format: case, element, alpha_s, mesh, step, u_pre, force, pressure_jump, uy_top_right, newton
   summary.csv                one row per run: final force and pressure jump, Newton iterations, converged
-  reaction_vs_upre.png       Fig 8 / Fig 10 analogue: indenter force against u_pre
+  reaction_vs_upre.png       Fig 8 / Fig 10 analogue: indenter force against u_pre, tri6 / p1p1_uphi (K/10)
   pressure_jump_vs_alpha.png Fig 9 analogue: final mean pressure jump across interior edges against alpha_s
   refinement.png             final force of p1p1_uphi (K/10) and tri6 against the mesh
 
@@ -34,6 +36,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
 SCENE = "scenes/constrained_block_fem.toml"
+PFEM_SCENE = "scenes/constrained_block_pfem.toml"
+NO_REMESH = ["remesh.every=1000"]  # more than the 200 steps: the PFEM scene never remeshes, the eq-24 ties stay
 ALPHAS = ["1", "10", "100", "1e3", "1e4", "1e5"]  # MPa; K/10 = 1e4 (K = 1e5 MPa)
 # Meshes are named as in the paper, rows x columns of element edges: "4x8" is divisions [8, 4].
 def mesh_name(d):
@@ -44,13 +48,15 @@ DU = 0.001  # mm of indentation per step (the scene's u_y = -0.001 t, dt = 1)
 REFERENCE_FORCE = 6.5  # N, seed 000 §5.1 from its references [3, 21]
 
 
-def run_case(loom, case, element, alpha, divisions, workdir):
-    """Runs one case; returns (rows, summary)."""
+def run_case(loom, workdir, case, element, alpha, divisions, scene=SCENE, more=()):
+    """Runs one case (more: further --set overrides); returns (rows, summary)."""
     out = os.path.join(workdir, case)
-    args = [loom, "run", SCENE, "--out", out, "--quiet", "--set", "output.every=0",
+    args = [loom, "run", scene, "--out", out, "--quiet", "--set", "output.every=0",
             "--set", f"body[0].element={element}", "--set", f"body[0].mesh.divisions=[{divisions[0]},{divisions[1]}]"]
     if alpha is not None:
         args += ["--set", f"body[0].alpha_s={alpha}"]
+    for m in more:
+        args += ["--set", m]
     start = time.monotonic()
     proc = subprocess.run(args, capture_output=True, text=True)
     wall = time.monotonic() - start
@@ -93,10 +99,11 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
 
-    cases = []  # (case, element, alpha, divisions)
+    cases = []  # (case, element, alpha, divisions[, scene, overrides])
     for alpha in ALPHAS:
         cases.append((f"p1p1_uphi_alpha_{alpha}", "p1p1_uphi", alpha, (8, 4)))
-    cases += [("tri6", "tri6", None, (8, 4)), ("p1", "p1", None, (8, 4))]
+    cases += [("tri6", "tri6", None, (8, 4)), ("tri6_eq24_ties", "tri6", None, (8, 4), PFEM_SCENE, NO_REMESH),
+              ("p1", "p1", None, (8, 4))]
     meshes = [(16, 8)] + ([(32, 16)] if a.fine else [])
     for d in meshes:
         cases += [(f"p1p1_uphi_K10_{mesh_name(d)}", "p1p1_uphi", None, d), (f"tri6_{mesh_name(d)}", "tri6", None, d)]
@@ -105,7 +112,7 @@ def main():
     curves, summaries = [], []
     with tempfile.TemporaryDirectory() as work:
         for case in cases:
-            rows, summary = run_case(a.loom, *case, work)
+            rows, summary = run_case(a.loom, work, *case)
             curves += rows
             summaries.append(summary)
     write_csv(os.path.join(a.out, "curves.csv"), curves)
@@ -115,8 +122,9 @@ def main():
         rs = [r for r in curves if r["case"] == case]
         return [r["u_pre"] for r in rs], [r["force"] for r in rs], [r["pressure_jump"] for r in rs]
 
-    # 1. Force against indentation (Fig 8 sweep and Fig 10 comparison on the 4x8 mesh; p1 in its own panel).
-    fig, (ax, ax_p1) = plt.subplots(1, 2, figsize=(12, 5), gridspec_kw={"width_ratios": [2, 1]})
+    # 1. Force against indentation (Fig 8 sweep and Fig 10 comparison on the 4x8 mesh), the Fig 10 order as
+    #    the ratio tri6 / p1p1_uphi (K/10) at every step, and p1 in its own panel.
+    fig, (ax, ax_r, ax_p1) = plt.subplots(1, 3, figsize=(16, 5), gridspec_kw={"width_ratios": [2, 1.2, 1]})
     cmap = plt.get_cmap("viridis")
     for k, alpha in enumerate(ALPHAS):
         u, f, _ = curve(f"p1p1_uphi_alpha_{alpha}")
@@ -124,6 +132,8 @@ def main():
         ax.plot(u, f, color=cmap(k / (len(ALPHAS) - 1)), lw=2.2 if alpha == "1e4" else 1.3, label=label)
     u, f, _ = curve("tri6")
     ax.plot(u, f, "r--", lw=2, label="tri6")
+    u, f, _ = curve("tri6_eq24_ties")
+    ax.plot(u, f, "m-.", lw=2, label="tri6 with eq-24 ties (PFEM scene, no remeshing)")
     ax.axhline(REFERENCE_FORCE, color="grey", ls=":", lw=1)
     ax.annotate("6.5 N (references of seed 000 §5.1)", (0.005, REFERENCE_FORCE + 0.1), color="grey", fontsize=8)
     ax.set_xlabel("u_pre (mm)")
@@ -133,6 +143,17 @@ def main():
     ax.set_ylim(0, None)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="lower right")
+    _, f_ref, _ = curve("p1p1_uphi_alpha_1e4")
+    for case, style, label in [("tri6", "r--", "tri6"), ("tri6_eq24_ties", "m-.", "tri6 with eq-24 ties")]:
+        u, f, _ = curve(case)
+        ax_r.plot(u[1:], [x / y for x, y in zip(f[1:], f_ref[1:])], style, lw=2, label=label)
+    ax_r.axhline(1.0, color="C0", lw=1)
+    ax_r.set_xlabel("u_pre (mm)")
+    ax_r.set_ylabel("force / force of p1p1_uphi (K/10)")
+    ax_r.set_title("Fig 10: tri6 against p1p1_uphi (K/10)")
+    ax_r.set_xlim(0, 0.2)
+    ax_r.grid(alpha=0.3)
+    ax_r.legend(fontsize=8, loc="upper left")
     for case, style, label in [("p1", "k-", "p1 (locks)"), ("p1p1_uphi_alpha_1e4", "C0-", "p1p1_uphi K/10"), ("tri6", "r--", "tri6")]:
         u, f, _ = curve(case)
         ax_p1.plot(u, f, style, label=label)
