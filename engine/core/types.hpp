@@ -17,8 +17,10 @@ template <int D>
 using Vec = Eigen::Matrix<double, D, 1>;
 using Vec2 = Vec<2>;
 using Vec3 = Vec<3>;
+using Vec4 = Vec<4>;
 using Mat3 = Eigen::Matrix3d;
 using Mat32 = Eigen::Matrix<double, 3, 2>;  // one row per corner of a linear triangle: shape gradients
+using Mat42 = Eigen::Matrix<double, 4, 2>;  // one row per corner of a bilinear quadrilateral
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 

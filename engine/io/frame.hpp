@@ -31,6 +31,7 @@ struct Frame {
 
 // VTK cell type codes used by loom.
 inline constexpr std::uint8_t kVtkTriangle = 5;
+inline constexpr std::uint8_t kVtkQuad = 9;
 inline constexpr std::uint8_t kVtkQuadraticTriangle = 22;
 
 }  // namespace loom

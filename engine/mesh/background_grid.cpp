@@ -50,23 +50,55 @@ void build_buckets(const Nodes<2>& nodes, const Cells& cells, GridLayout& layout
 }  // namespace
 
 void find_cell_neighbours(Cells& cells, Index n_nodes) {
+  const int sides = cells.sides();
   cells.neighbour.use();
-  cells.neighbour.resize_strided(cells.size(), 3, kNoIndex);
-  std::unordered_map<std::uint64_t, std::pair<Index, int>> open;  // side key -> (cell, corner opposite)
+  cells.neighbour.resize_strided(cells.size(), sides, kNoIndex);
+  std::unordered_map<std::uint64_t, std::pair<Index, int>> open;  // side key -> (cell, side)
   open.reserve(std::size_t(cells.size()) * 2);
   auto key = [n_nodes](Index a, Index b) { return std::uint64_t(std::min(a, b)) * std::uint64_t(n_nodes) + std::uint64_t(std::max(a, b)); };
   for (Index c = 0; c < cells.size(); ++c)
-    for (int a = 0; a < 3; ++a) {
-      const std::uint64_t k = key(cells.node(c, (a + 1) % 3), cells.node(c, (a + 2) % 3));
+    for (int a = 0; a < sides; ++a) {
+      const auto [i, j] = cells.side_corners(c, a);
+      const std::uint64_t k = key(i, j);
       auto it = open.find(k);
       if (it == open.end()) {
         open.emplace(k, std::make_pair(c, a));
         continue;
       }
-      cells.neighbour[3 * c + a] = it->second.first;
-      cells.neighbour[3 * it->second.first + it->second.second] = c;
+      cells.neighbour[sides * c + a] = it->second.first;
+      cells.neighbour[sides * it->second.first + it->second.second] = c;
       open.erase(it);
     }
+}
+
+void build_quad_grid(const RectangleSpec& r, Formulation formulation, Nodes<2>& nodes, Cells& cells, GridLayout& layout) {
+  LOOM_CHECK(r.nx > 0 && r.ny > 0 && r.size.x() > 0.0 && r.size.y() > 0.0, InputError,
+             "a quad4 grid needs positive divisions and size (got " << r.nx << " x " << r.ny << ")");
+  const Vec2 h(r.size.x() / r.nx, r.size.y() / r.ny);
+  nodes.resize(Index(r.nx + 1) * Index(r.ny + 1));
+  for (int j = 0; j <= r.ny; ++j)
+    for (int i = 0; i <= r.nx; ++i) nodes.X[Index(j) * (r.nx + 1) + i] = r.origin + Vec2(i * h.x(), j * h.y());
+  cells = Cells(CellType::quad4, formulation);
+  auto& conn = cells.nodes.values();
+  conn.reserve(std::size_t(r.nx) * std::size_t(r.ny) * 4);
+  for (int j = 0; j < r.ny; ++j)  // cell k = j nx + i, as the structured locate computes it
+    for (int i = 0; i < r.nx; ++i) {
+      const Index n0 = Index(j) * (r.nx + 1) + i;
+      for (Index n : {n0, n0 + 1, n0 + r.nx + 2, n0 + r.nx + 1}) conn.push_back(n);
+    }
+  cells.body.assign(Index(r.nx) * r.ny, 0);
+  colour_cells(cells, nodes.size());
+  find_cell_neighbours(cells, nodes.size());
+  cells.measure.use();
+  cells.measure.resize(cells.size(), h.x() * h.y());
+
+  layout = GridLayout{};
+  layout.lo = r.origin, layout.hi = r.origin + r.size;
+  layout.tolerance = 1e-9 * layout.width();
+  layout.structured = true;
+  layout.origin = r.origin;
+  layout.nx = r.nx, layout.ny = r.ny;
+  layout.spacing = h;
 }
 
 void build_background_grid(const MeshData& mesh, const RectangleSpec* rectangle, Formulation formulation, Nodes<2>& nodes,

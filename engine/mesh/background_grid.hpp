@@ -1,4 +1,4 @@
-// Builds an MPM background grid (seed 003 §3) from a generated triangulation: the node store (X), the cell
+// Builds an MPM background grid (seed 003 §3) from a generated triangulation or a rectangle of quad4 cells: the node store (X), the cell
 // store with colours, neighbours, areas and shape gradients (the grid never moves, so they are computed
 // once), and the layout the locate system searches with.
 #pragma once
@@ -17,7 +17,11 @@ namespace loom {
 void build_background_grid(const MeshData& mesh, const RectangleSpec* rectangle, Formulation formulation, Nodes<2>& nodes,
                            Cells& cells, GridLayout& layout);
 
-// Fills cells.neighbour (3 per tri3 cell: the cell across the side opposite each corner).
+// A rectangle of nx x ny axis-aligned quad4 cells (bilinear), cell k = j nx + i, corners counter-clockwise
+// from the lower left; located by arithmetic. Throws InputError for an empty rectangle.
+void build_quad_grid(const RectangleSpec& rectangle, Formulation formulation, Nodes<2>& nodes, Cells& cells, GridLayout& layout);
+
+// Fills cells.neighbour (one per side, Cells::side_corners: the cell across it).
 void find_cell_neighbours(Cells& cells, Index n_nodes);
 
 }  // namespace loom

@@ -195,8 +195,9 @@ void MpmRun::initial_acceleration() {
   }
   for (Index p = 0; p < m_.particles.X.size(); ++p) {
     const Index* corner = m_.grid.cell_nodes(m_.particle_loc.cell[p]);
-    const Vec3& N = m_.particle_loc.N[p];
-    m_.particles.a[p] = N[0] * g.a[corner[0]] + N[1] * g.a[corner[1]] + N[2] * g.a[corner[2]];
+    const Vec4& N = m_.particle_loc.N[p];
+    m_.particles.a[p].setZero();
+    for (int a = 0; a < m_.grid.stride; ++a) m_.particles.a[p] += N[a] * g.a[corner[a]];
   }
 }
 

@@ -109,11 +109,11 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
 
   // 2. Grid, particles, traction points.
   const MeshSpec& gm = scene.grid.mesh;
-  const MeshData grid_mesh = generate_body_mesh(gm);
   const RectangleSpec rect = rectangle_of(gm);
   const bool structured = gm.generator == MeshGenerator::rectangle && gm.distortion == 0.0;
   try {
-    build_background_grid(grid_mesh, structured ? &rect : nullptr, body.element, grid_nodes, grid, layout);
+    if (scene.grid.quad4) build_quad_grid(rect, body.element, grid_nodes, grid, layout);
+    else build_background_grid(generate_body_mesh(gm), structured ? &rect : nullptr, body.element, grid_nodes, grid, layout);
   } catch (const InputError& e) {
     std::ostringstream os;
     os << gm.where << ": error: grid: " << e.what();
@@ -151,7 +151,7 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   for (std::size_t k = 0, tracer = 0; k < scene.probes.size(); ++k) {  // a probe outside the grid: its own key
     if (scene.probes[k].kind != ProbeKind::point) continue;
     const Vec2 at = probe_points.X[Index(tracer++)];
-    Vec3 N;
+    Vec4 N;
     if (find_cell(layout, grid, grid_nodes, at, kNoIndex, N) == kNoIndex) {
       std::ostringstream os;
       os << scene.probes[k].where << ": error: probe[" << k << "].at: (" << at.x() << ", " << at.y()

@@ -91,7 +91,7 @@ class Loader {
     read_pfem_options(s, root_);
     const auto grid = root_.table("grid");
     s.grid.present = grid.present();
-    if (grid.present()) read_mesh(grid, s.grid.mesh);
+    if (grid.present()) read_grid(grid, s.grid);
     read_output(s);
     check_mass(s);
     check_method_support(s, root_, diag_);
@@ -226,6 +226,15 @@ class Loader {
     if (b.element == Formulation::p1p1_up && b.material != kNoIndex &&
         s.materials[std::size_t(b.material)].model != MaterialModel::neo_hooke_split)
       t.error("element", "p1p1_up takes the pressure of a deviatoric/volumetric split: use it with model = \"neo_hooke_split\"");
+  }
+
+  void read_grid(const TableReader& grid, GridSpec& g) {
+    read_mesh(grid, g.mesh);
+    g.quad4 = grid.string("cells") == "quad4";
+    if (!g.quad4) return;
+    if (g.mesh.generator != MeshGenerator::rectangle) grid.error("cells", "quad4 cells need generator = \"rectangle\"");
+    if (g.mesh.pattern != GridPattern::right) grid.error("pattern", "cells = \"quad4\" are squares, not triangulated: leave pattern out");
+    if (g.mesh.distortion != 0.0) grid.error("distortion", "cells = \"quad4\" are axis-aligned squares: distortion must be 0");
   }
 
   void read_mesh(const TableReader& mesh, MeshSpec& m) {

@@ -98,9 +98,10 @@ struct BodySpec {
   SourceRef where;
 };
 
-// The background grid of method mpm: a generated triangulation (MeshSpec's generators).
+// The background grid of method mpm: a generated triangulation (MeshSpec's generators) or a rectangle of quad4 cells.
 struct GridSpec {
   bool present = false;
+  bool quad4 = false;  // cells = "quad4": bilinear cells of a rectangle
   MeshSpec mesh;
 };
 

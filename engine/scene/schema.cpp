@@ -106,14 +106,18 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].body_force.y", K::expression, "y component." + expr).by_default("0"));
   // [grid]
   s.push_back(key("grid", K::table,
-                  "Method mpm: the background grid (seed 003 §3), a fixed triangulation that need not conform to the body and "
+                  "Method mpm: the background grid (seed 003 §3), fixed triangles or squares that need not conform to the body and "
                   "must contain the particles at all times; only cells holding particles are active."));
+  s.push_back(key("grid.cells", K::choice,
+                  "Cell type: tri3 (linear triangles, the seed's P1 grids) or quad4 (bilinear squares of a rectangle; generator = "
+                  "\"rectangle\" without pattern or distortion).")
+                  .one_of({"tri3", "quad4"}).by_default("tri3"));
   s.push_back(key("grid.generator", K::choice, "rectangle (located by arithmetic unless shifted or distorted) or cooks_membrane (located by walking).")
                   .one_of({"rectangle", "cooks_membrane"}).require());
   s.push_back(key("grid.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
   s.push_back(key("grid.size", K::vec2, "Width and height (rectangle; required there)."));
   s.push_back(key("grid.divisions", K::ivec2, "Cell edges along x and y.").require());
-  s.push_back(key("grid.pattern", K::choice, "Triangulation of the squares: right, alternating, or shifted.")
+  s.push_back(key("grid.pattern", K::choice, "Triangulation of the squares (tri3): right, alternating, or shifted.")
                   .one_of({"right", "alternating", "shifted"}).by_default("right"));
   s.push_back(key("grid.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
   s.push_back(key("grid.distortion", K::real, "Random move of interior grid nodes (fraction of the smallest altitude).").by_default("0.0").at_least(0).at_most(0.25));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -11,7 +12,7 @@
 
 namespace loom {
 
-enum class CellType { tri3, tri6 };
+enum class CellType { tri3, tri6, quad4 };  // quad4: MPM background grids only
 
 // Element formulation of a cell block: what the assembly computes on its cells.
 //  p1:        linear displacement triangle (tri3, one point);
@@ -33,11 +34,11 @@ inline const char* formulation_name(Formulation f) {
 }
 
 
-inline int nodes_per_cell(CellType t) { return t == CellType::tri3 ? 3 : 6; }
+inline int nodes_per_cell(CellType t) { return t == CellType::tri3 ? 3 : t == CellType::quad4 ? 4 : 6; }
 inline CellType cell_type_of(Formulation f) { return f == Formulation::tri6 ? CellType::tri6 : CellType::tri3; }
 // Formulations with the nodal dilatation phi as an unknown.
 inline bool has_dilatation(Formulation f) { return f == Formulation::p1p1_uphi; }
-inline const char* cell_type_name(CellType t) { return t == CellType::tri3 ? "tri3" : "tri6"; }
+inline const char* cell_type_name(CellType t) { return t == CellType::tri3 ? "tri3" : t == CellType::quad4 ? "quad4" : "tri6"; }
 
 struct Cells {
   CellType type = CellType::tri3;
@@ -47,9 +48,9 @@ struct Cells {
   Column<Index> body;       // owning body index
   Column<Index> colour;     // colour of each cell: cells of one colour share no node
   // Background grids only (MPM): the grid never moves, so its geometry is computed once.
-  Column<Index> neighbour;  // 3 per cell: the cell across the side opposite corner a, kNoIndex on the boundary
+  Column<Index> neighbour;  // one per side (side_corners): the cell across it, kNoIndex on the boundary
   Column<double> measure;   // cell area, L^2
-  Column<Mat32> gradient;   // dN^a/dx of the corners (tri3: constant over the cell), 1/L
+  Column<Mat32> gradient;   // tri3: dN^a/dx of the corners (constant over the cell), 1/L; quad4: unused
 
   // Cells grouped by colour: the cells of colour k are by_colour[colour_offsets[k] .. colour_offsets[k+1]).
   std::vector<Index> by_colour;
@@ -66,6 +67,14 @@ struct Cells {
   Index n_colours() const { return colour_offsets.empty() ? 0 : Index(colour_offsets.size()) - 1; }
   const Index* cell_nodes(Index c) const { return nodes.data() + static_cast<std::size_t>(c) * stride; }
   Index node(Index c, int a) const { return nodes[c * stride + a]; }
+  // Corner cells (tri3, quad4): as many sides as corners. Side a of a triangle is the one opposite corner a
+  // (what a walk crosses when barycentric coordinate a is negative); side a of a quadrilateral runs from
+  // corner a to corner a + 1.
+  int sides() const { return stride; }
+  std::pair<Index, Index> side_corners(Index c, int a) const {
+    if (stride == 3) return {node(c, (a + 1) % 3), node(c, (a + 2) % 3)};
+    return {node(c, a), node(c, (a + 1) % stride)};
+  }
 
   template <class Visit>
   void for_each_column(Visit&& f) const {

@@ -1,7 +1,7 @@
 // Where the points of a Points store sit in the MPM background grid at the start of the step: the
 // per-step quadrature data of material points (DESIGN §2 QuadPoints, with a variable number of points per
-// cell). Rebuilt by the locate system every (sub)step; the grid's shape gradients are constant per tri3
-// cell and live on the grid's Cells store.
+// cell). Rebuilt by the locate system every (sub)step; the shape gradients are the cell's (tri3) or follow
+// from N (quad4): engine/mesh/grid_shape.hpp.
 #pragma once
 
 #include <string>
@@ -16,7 +16,7 @@ struct PointLocations {
   std::string entity = "particle";  // what the points are, in messages
 
   Column<Index> cell;  // grid cell holding the point at its position x_n = X + u_n
-  Column<Vec3> N;      // linear shape functions of the cell's corners at x_n (its barycentric coordinates)
+  Column<Vec4> N;      // shape functions of the cell's corners at x_n (tri3: barycentric, fourth entry 0)
   Column<Mat3> F;      // material points: deformation gradient at the current Newton iterate
 
   // Points grouped by cell (a counting sort, ascending point index within a cell): the points of cell c
@@ -36,7 +36,7 @@ struct PointLocations {
 
   void resize(Index n) {
     cell.resize(n, kNoIndex);
-    N.resize(n, Vec3::Zero());
+    N.resize(n, Vec4::Zero());
     F.resize(n, Mat3::Identity());
   }
 

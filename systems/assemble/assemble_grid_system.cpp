@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "engine/core/parallel.hpp"
+#include "engine/mesh/grid_shape.hpp"
 #include "systems/assemble/elements/displacement_point.hpp"
 #include "systems/assemble/elements/mixed_up_point.hpp"
 #include "systems/update/grid_newmark.hpp"
@@ -65,40 +66,42 @@ Vec2 body_force_of(const BoundaryConditions<2>& bc, Index p) {
   return bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];
 }
 
+template <int NC>
 void assemble_displacement(const Args& x) {
   for_each_active_cell_by_colour(x.act, [&](Index c) {
-    NodalVectors<3> du;
-    for (int a = 0; a < 3; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
-    ElementVector<3> r = ElementVector<3>::Zero();
-    ElementMatrix<3> K = ElementMatrix<3>::Zero();
+    NodalVectors<NC> du;
+    for (int a = 0; a < NC; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
+    ElementVector<NC> r = ElementVector<NC>::Zero();
+    ElementMatrix<NC> K = ElementMatrix<NC>::Zero();
     const Index* pts = x.loc.points_in(c);
     for (Index k = 0; k < x.loc.count_in(c); ++k) {
       const Index p = pts[k];
       const Mat3& F_n = x.particles.F[p];
       const double Vn = x.particles.volume[p] * F_n.determinant();
-      const bool ok = std::visit(
-          [&](const auto& m) { return add_displacement_point<3>(m, du, x.grid.gradient[c], Vn, F_n, x.loc.F[p], r, &K); },
-          x.materials[std::size_t(x.particles.body[p])].model);
+      const CornerGradients<NC> dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
+      const bool ok = std::visit([&](const auto& m) { return add_displacement_point<NC>(m, du, dN, Vn, F_n, x.loc.F[p], r, &K); },
+                                 x.materials[std::size_t(x.particles.body[p])].model);
       if (!ok) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
     }
-    scatter_cell<6>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    scatter_cell<2 * NC>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
   });
 }
 
+template <int NC>
 void assemble_mixed(const Args& x) {
   const double dt = x.ctx.dt;
   for_each_active_cell_by_colour(x.act, [&](Index c) {
-    UpCellValues cell;
-    for (int a = 0; a < 3; ++a) {
+    UpCellValues<NC> cell;
+    for (int a = 0; a < NC; ++a) {
       const Index i = x.grid.node(c, a);
       cell.du.row(a) = x.g.u[i].transpose();
       cell.p[a] = x.g.p[i];
       if (x.dynamic) cell.a.row(a) = newmark_acceleration(x.g, i, dt).transpose();
       if (x.g.proj_u.used()) cell.proj_u.row(a) = x.g.proj_u[i].transpose(), cell.proj_p[a] = x.g.proj_p[i];
     }
-    UpVector r = UpVector::Zero();
-    UpMatrix K = UpMatrix::Zero();
-    PppAccumulator ppp;
+    UpVector<NC> r = UpVector<NC>::Zero();
+    UpMatrix<NC> K = UpMatrix<NC>::Zero();
+    PppAccumulator<NC> ppp;
     const Index* pts = x.loc.points_in(c);
     double inv_mu = 0.0;
     bool use_ppp = false;
@@ -107,9 +110,9 @@ void assemble_mixed(const Args& x) {
       const Index body = x.particles.body[p];
       const BodySpec& spec = x.ctx.scene->bodies[std::size_t(body)];
       const NeoHookeSplit& m = std::get<NeoHookeSplit>(x.materials[std::size_t(body)].model);
-      UpPoint pt;
-      pt.N = x.loc.N[p];
-      pt.dN = x.grid.gradient[c];
+      UpPoint<NC> pt;
+      pt.N = x.loc.N[p].template head<NC>();
+      pt.dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
       pt.V0 = x.particles.volume[p];
       pt.F_n = x.particles.F[p];
       const double Vn = pt.V0 * pt.F_n.determinant();
@@ -121,11 +124,11 @@ void assemble_mixed(const Args& x) {
       st.tau1 = spec.tau_c1 * x.grid.measure[c] / (2.0 * m.mu);  // eq 21, h^2 = cell area
       st.tau2 = 2.0 * spec.tau_c2 * m.mu;
       st.c_a = x.dynamic ? newmark_stiffness(dt) : 0.0;
-      if (!add_up_point(m, st, pt, cell, x.loc.F[p], r, &K)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
+      if (!add_up_point<NC>(m, st, pt, cell, x.loc.F[p], r, &K)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
       if (spec.stabilisation == Stabilisation::ppp) ppp.add(pt.N, Vn), inv_mu = 1.0 / m.mu, use_ppp = true;
     }
     if (use_ppp) ppp.apply(inv_mu, cell.p, r, &K);
-    scatter_cell<9>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    scatter_cell<3 * NC>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
   });
 }
 
@@ -141,8 +144,9 @@ AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOp
   std::atomic<Index> inverted{0};
   const bool dynamic = ctx.scene->time.integrator == Integrator::newmark;
   const Args args{ctx, opt, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, dynamic};
-  if (system.dofs.per_node == 3) assemble_mixed(args);
-  else assemble_displacement(args);
+  const bool quad = grid.stride == 4;
+  if (system.dofs.per_node == 3) quad ? assemble_mixed<4>(args) : assemble_mixed<3>(args);
+  else quad ? assemble_displacement<4>(args) : assemble_displacement<3>(args);
 
   // Nodal terms on active nodes: lumped inertia (Newmark) and external loads.
   const DofMap& dofs = system.dofs;

@@ -37,7 +37,7 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
     for (Index k = 0; k < particle_loc.count_in(c); ++k) {
       const Index p = pts[k];
       const Vec2 f = particles.mass[p] * bc.particle_body_force[std::size_t(p)];
-      for (int a = 0; a < 3; ++a)
+      for (int a = 0; a < grid.stride; ++a)
         for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += particle_loc.N[p][a] * f[d];
     }
   });
@@ -50,13 +50,13 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
     for (int d = 0; d < 2; ++d)
       if (e[std::size_t(d)] != kNoIndex) t[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, X.x(), X.y());
     const Vec2 x = traction_points.position(q);
-    Vec3 N;
+    Vec4 N;
     const Index c = host_active_cell(grid, grid_nodes, activity, traction_loc.cell[q], x, N);
     LOOM_CHECK(c != kNoIndex, RunError,
                "traction point " << q << " (reference position (" << X.x() << ", " << X.y() << ")) at (" << x.x() << ", " << x.y()
                                  << ") has no grid cell holding particles next to it at step " << ctx.step << ": its load cannot reach the body");
     const Vec2 f = traction_points.volume[q] * t;
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < grid.stride; ++a)
       for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];
   }
 }

@@ -6,21 +6,12 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/mesh/grid_shape.hpp"
 
 namespace loom {
 namespace {
 
-// Barycentric coordinates of x in cell c.
-Vec3 barycentric(const Cells& grid, const Nodes<2>& nodes, Index c, const Vec2& x) {
-  const Vec2& x0 = nodes.X[grid.node(c, 0)];
-  const Mat32& g = grid.gradient[c];
-  const Vec2 d = x - x0;
-  Vec3 N;
-  N[1] = g.row(1).dot(d);
-  N[2] = g.row(2).dot(d);
-  N[0] = 1.0 - N[1] - N[2];
-  return N;
-}
+Vec4 barycentric(const Cells& grid, const Nodes<2>& nodes, Index c, const Vec2& x) { return grid_shape_at(grid, nodes, c, x); }
 
 // Accepted as inside when no barycentric coordinate is below -tol (tol: the layout's distance tolerance
 // relative to the cell size, so that points on shared or outer edges are not lost to round-off).
@@ -28,21 +19,25 @@ double inside_tolerance(const GridLayout& layout, const Cells& grid, Index c) {
   return layout.tolerance / std::sqrt(grid.measure[c]);
 }
 
-Index find_structured(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Vec3& N) {
+Index find_structured(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Vec4& N) {
   const Vec2 s = (x - layout.origin).cwiseQuotient(layout.spacing);
   const double tol = layout.tolerance / layout.spacing.minCoeff();
   if (!(s.x() >= -tol && s.y() >= -tol && s.x() <= layout.nx + tol && s.y() <= layout.ny + tol)) return kNoIndex;
   const int i = std::clamp(int(std::floor(s.x())), 0, layout.nx - 1);
   const int j = std::clamp(int(std::floor(s.y())), 0, layout.ny - 1);
   const Index k = Index(j) * layout.nx + i;
+  if (grid.stride == 4) {  // one quad4 cell per square
+    N = barycentric(grid, nodes, k, x);
+    return k;
+  }
   // The square's two triangles: the one where x is "most inside".
-  const Vec3 N0 = barycentric(grid, nodes, 2 * k, x), N1 = barycentric(grid, nodes, 2 * k + 1, x);
-  const bool first = N0.minCoeff() >= N1.minCoeff();
+  const Vec4 N0 = barycentric(grid, nodes, 2 * k, x), N1 = barycentric(grid, nodes, 2 * k + 1, x);
+  const bool first = N0.head<3>().minCoeff() >= N1.head<3>().minCoeff();
   N = first ? N0 : N1;
   return first ? 2 * k : 2 * k + 1;
 }
 
-Index find_in_buckets(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Vec3& N) {
+Index find_in_buckets(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Vec4& N) {
   const Vec2 s = (x - layout.lo).cwiseQuotient(layout.bucket_size);
   const double tol = layout.tolerance / layout.bucket_size.minCoeff();
   if (!(s.x() >= -tol && s.y() >= -tol && s.x() <= layout.bx + tol && s.y() <= layout.by + tol)) return kNoIndex;
@@ -53,19 +48,20 @@ Index find_in_buckets(const GridLayout& layout, const Cells& grid, const Nodes<2
   double best_min = -1e300;
   for (Index k = layout.bucket_offsets[b]; k < layout.bucket_offsets[b + 1]; ++k) {
     const Index c = layout.bucket_cells[std::size_t(k)];
-    const Vec3 Nc = barycentric(grid, nodes, c, x);
-    if (Nc.minCoeff() > best_min) best_min = Nc.minCoeff(), best = c, N = Nc;
+    const Vec4 Nc = barycentric(grid, nodes, c, x);
+    const double inside = grid_shape_inside(grid.stride, Nc);
+    if (inside > best_min) best_min = inside, best = c, N = Nc;
   }
   if (best != kNoIndex && best_min >= -inside_tolerance(layout, grid, best)) return best;
   return kNoIndex;
 }
 
-// Visibility walk: step across the side opposite the most negative barycentric coordinate.
-Index walk(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Index c, Vec3& N) {
+// Visibility walk (triangles): step across the side opposite the most negative barycentric coordinate.
+Index walk(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Index c, Vec4& N) {
   for (int steps = 0; steps < 64; ++steps) {
     N = barycentric(grid, nodes, c, x);
     Index a;
-    const double m = N.minCoeff(&a);
+    const double m = N.head<3>().minCoeff(&a);
     if (m >= -inside_tolerance(layout, grid, c)) return c;
     const Index next = grid.neighbour[3 * c + a];
     if (next == kNoIndex) return kNoIndex;  // left through the boundary (or a concave part): buckets decide
@@ -76,7 +72,7 @@ Index walk(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, c
 
 }  // namespace
 
-Index host_active_cell(const Cells& grid, const Nodes<2>& nodes, const GridActivity& act, Index c, const Vec2& x, Vec3& N) {
+Index host_active_cell(const Cells& grid, const Nodes<2>& nodes, const GridActivity& act, Index c, const Vec2& x, Vec4& N) {
   if (act.cell_active[std::size_t(c)]) {
     N = barycentric(grid, nodes, c, x);
     return c;
@@ -90,20 +86,21 @@ Index host_active_cell(const Cells& grid, const Nodes<2>& nodes, const GridActiv
   for (int ring = 0; ring < 4 && best == kNoIndex; ++ring) {
     const int end = n_visited;
     for (int k = begin; k < end; ++k)
-      for (int a = 0; a < 3; ++a) {
-        const Index n = grid.neighbour[3 * visited[k] + a];
+      for (int a = 0; a < grid.sides(); ++a) {
+        const Index n = grid.neighbour[grid.sides() * visited[k] + a];
         if (n == kNoIndex || std::find(visited, visited + n_visited, n) != visited + n_visited || n_visited == 128) continue;
         visited[n_visited++] = n;
         if (!act.cell_active[std::size_t(n)]) continue;
-        const Vec3 Nn = barycentric(grid, nodes, n, x);
-        if (Nn.minCoeff() > best_min) best_min = Nn.minCoeff(), best = n, N = Nn;
+        const Vec4 Nn = barycentric(grid, nodes, n, x);
+        const double inside = grid_shape_inside(grid.stride, Nn);
+        if (inside > best_min) best_min = inside, best = n, N = Nn;
       }
     begin = end;
   }
   return best;
 }
 
-Index find_cell(const GridLayout& layout, const Cells& grid, const Nodes<2>& grid_nodes, const Vec2& x, Index hint, Vec3& N) {
+Index find_cell(const GridLayout& layout, const Cells& grid, const Nodes<2>& grid_nodes, const Vec2& x, Index hint, Vec4& N) {
   if (layout.structured) return find_structured(layout, grid, grid_nodes, x, N);
   if (hint != kNoIndex) {
     const Index c = walk(layout, grid, grid_nodes, x, hint, N);
@@ -119,7 +116,7 @@ void locate_points(const StepContext& ctx, const GridLayout& layout, const Cells
   // 1. Cell and shape functions of every point (the previous cell is the walk's start).
   std::atomic<Index> outside{0};
   for_each_index(n, [&](Index p) {
-    Vec3 N;
+    Vec4 N;
     const Index c = find_cell(layout, grid, grid_nodes, points.position(p), loc.cell[p], N);
     loc.cell[p] = c;
     if (c == kNoIndex) return void(outside.fetch_add(1, std::memory_order_relaxed));

@@ -1,9 +1,49 @@
 #include "systems/map/project_residuals.hpp"
 
 #include "engine/core/parallel.hpp"
+#include "engine/mesh/grid_shape.hpp"
 #include "systems/update/grid_newmark.hpp"
 
 namespace loom {
+
+namespace {
+
+// One cell's points: sum_p V_n N_I R(x_p) into the nodes (R_u = rho (b - a_h) + grad p_h, R_p = (J - 1) - p_h / kappa).
+template <int NC>
+void project_cell(const StepContext& ctx, bool dynamic, const std::vector<BodyMaterial>& materials, const Cells& grid,
+                  const Points<2>& particles, const PointLocations& loc, const BoundaryConditions<2>& bc, Nodes<2>& g, Index c) {
+  const Index* corner = grid.cell_nodes(c);
+  Eigen::Matrix<double, NC, 1> p;
+  Eigen::Matrix<double, NC, 2> a = Eigen::Matrix<double, NC, 2>::Zero(), du;
+  for (int i = 0; i < NC; ++i) {
+    p[i] = g.p[corner[i]];
+    du.row(i) = g.u[corner[i]].transpose();
+    if (dynamic) a.row(i) = newmark_acceleration(g, corner[i], ctx.dt).transpose();
+  }
+  const Index* pts = loc.points_in(c);
+  for (Index n = 0; n < loc.count_in(c); ++n) {
+    const Index q = pts[n];
+    const Eigen::Matrix<double, NC, 1> N = loc.N[q].head<NC>();
+    const CornerGradients<NC> dN = grid_shape_gradients<NC>(grid, g, c, loc.N[q]);
+    const Mat3& F_n = particles.F[q];
+    Mat3 dF = Mat3::Identity();
+    dF.topLeftCorner<2, 2>() += du.transpose() * dN;
+    const double J = (dF * F_n).determinant();
+    const double Vn = particles.volume[q] * F_n.determinant();
+    const double rho = particles.mass[q] / Vn;
+    const double ik = std::get<NeoHookeSplit>(materials[std::size_t(particles.body[q])].model).inv_kappa;
+    const Vec2 b = bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(q)];
+    const Vec2 Ru = rho * (b - a.transpose() * N) + dN.transpose() * p;
+    const double Rp = (J - 1.0) - N.dot(p) * ik;
+    for (int i = 0; i < NC; ++i) {
+      const double w = Vn * N[i];
+      g.proj_u[corner[i]] += w * Ru;
+      g.proj_p[corner[i]] += w * Rp;
+    }
+  }
+}
+
+}  // namespace
 
 void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Cells& grid,
                        const GridActivity& activity, const Points<2>& particles, const PointLocations& loc,
@@ -13,36 +53,8 @@ void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& 
   for (std::size_t k = 0; k + 1 < activity.colour_offsets.size(); ++k) {
     const Index* cells = activity.active_by_colour.data() + activity.colour_offsets[k];
     for_each_in(cells, activity.colour_offsets[k + 1] - activity.colour_offsets[k], [&](Index c) {
-      const Index* corner = grid.cell_nodes(c);
-      const Mat32& dN = grid.gradient[c];
-      Vec3 p;
-      Mat32 a = Mat32::Zero(), du;
-      for (int i = 0; i < 3; ++i) {
-        p[i] = g.p[corner[i]];
-        du.row(i) = g.u[corner[i]].transpose();
-        if (dynamic) a.row(i) = newmark_acceleration(g, corner[i], ctx.dt).transpose();
-      }
-      const Vec2 grad_p = dN.transpose() * p;
-      const Index* pts = loc.points_in(c);
-      for (Index n = 0; n < loc.count_in(c); ++n) {
-        const Index q = pts[n];
-        const Vec3& N = loc.N[q];
-        const Mat3& F_n = particles.F[q];
-        Mat3 dF = Mat3::Identity();
-        dF.topLeftCorner<2, 2>() += du.transpose() * dN;
-        const double J = (dF * F_n).determinant();
-        const double Vn = particles.volume[q] * F_n.determinant();
-        const double rho = particles.mass[q] / Vn;
-        const double ik = std::get<NeoHookeSplit>(materials[std::size_t(particles.body[q])].model).inv_kappa;
-        const Vec2 b = bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(q)];
-        const Vec2 Ru = rho * (b - a.transpose() * N) + grad_p;
-        const double Rp = (J - 1.0) - N.dot(p) * ik;
-        for (int i = 0; i < 3; ++i) {
-          const double w = Vn * N[i];
-          g.proj_u[corner[i]] += w * Ru;
-          g.proj_p[corner[i]] += w * Rp;
-        }
-      }
+      if (grid.stride == 4) project_cell<4>(ctx, dynamic, materials, grid, particles, loc, bc, g, c);
+      else project_cell<3>(ctx, dynamic, materials, grid, particles, loc, bc, g, c);
     });
   }
   for_each_index(g.size(), [&](Index i) {

@@ -22,7 +22,7 @@ void project_to_grid(const StepContext&, const Cells& grid, const Points<2>& par
     for (Index k = 0; k < loc.count_in(c); ++k) {
       const Index p = pts[k];
       const double m = particles.mass[p];
-      for (int a = 0; a < 3; ++a) {
+      for (int a = 0; a < grid.stride; ++a) {
         const Index i = corner[a];
         const double w = loc.N[p][a] * m;
         g.lumped_mass[i] += w;

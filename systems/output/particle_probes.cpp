@@ -35,10 +35,11 @@ double pressure_jump(const GridView& g) {
   double sum = 0.0;
   long long n = 0;
   for (Index c : g.activity.active_cells)
-    for (int a = 0; a < 3; ++a) {
-      const Index other = g.grid.neighbour[3 * c + a];
+    for (int a = 0; a < g.grid.sides(); ++a) {
+      const Index other = g.grid.neighbour[g.grid.sides() * c + a];
       if (other != kNoIndex && g.activity.cell_active[std::size_t(other)] && other < c) continue;  // counted from `other`
-      sum += std::abs(g.nodes.p[g.grid.node(c, (a + 1) % 3)] - g.nodes.p[g.grid.node(c, (a + 2) % 3)]);
+      const auto [i, j] = g.grid.side_corners(c, a);
+      sum += std::abs(g.nodes.p[i] - g.nodes.p[j]);
       ++n;
     }
   return n ? sum / double(n) : 0.0;

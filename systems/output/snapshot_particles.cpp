@@ -75,9 +75,9 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   frame.connectivity.clear(), frame.offsets.clear(), frame.cell_types.clear();
   FrameArray count{"particles", 1, {}};
   for (Index c : activity.active_cells) {
-    for (int a = 0; a < 3; ++a) frame.connectivity.push_back(grid.node(c, a));
+    for (int a = 0; a < grid.stride; ++a) frame.connectivity.push_back(grid.node(c, a));
     frame.offsets.push_back(Index(frame.connectivity.size()));
-    frame.cell_types.push_back(kVtkTriangle);
+    frame.cell_types.push_back(grid.stride == 4 ? kVtkQuad : kVtkTriangle);
     count.values.push_back(particle_loc.count_in(c));
   }
   frame.point_arrays.clear();

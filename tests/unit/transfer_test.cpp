@@ -1,7 +1,7 @@
 // systems/map: the particle-grid transfers of seed 003 Algorithm 1 conserve mass and momentum to round-off
 // (STYLE §11 invariants): projection keeps sum m, sum m v, sum m a; interpolation after a Newmark update
 // of the grid gives the particles the grid's momentum; constants and linear fields pass unchanged; the
-// projection does not depend on the thread count.
+// projection does not depend on the thread count. On tri3 and on quad4 grids.
 #include <gtest/gtest.h>
 
 #include <oneapi/tbb/global_control.h>
@@ -26,13 +26,14 @@ struct Fixture {
   PointLocations loc;
   StepContext ctx;
 
-  explicit Fixture(Index n_particles, unsigned seed = 1) {
+  explicit Fixture(Index n_particles, unsigned seed = 1, bool quad = false) {
     RectangleSpec spec;
     spec.size = Vec2(2.0, 1.5), spec.nx = 40, spec.ny = 30, spec.pattern = GridPattern::alternating;
     for (auto* c : {&nodes.lumped_mass}) c->use();
     for (auto* c : {&nodes.v_n, &nodes.a_n, &nodes.v, &nodes.a, &nodes.proj_u}) c->use();
     nodes.p.use(), nodes.proj_p.use();
-    build_background_grid(generate_rectangle(spec), &spec, Formulation::p1p1_up, nodes, cells, layout);
+    if (quad) build_quad_grid(spec, Formulation::p1p1_up, nodes, cells, layout);
+    else build_background_grid(generate_rectangle(spec), &spec, Formulation::p1p1_up, nodes, cells, layout);
     particles.for_each_column([](const char*, auto& c) { c.use(); });
     particles.resize(n_particles);
     std::mt19937 rng(seed);
@@ -68,8 +69,10 @@ auto grid_sum(const Fixture& f, Get get) {
   return s;
 }
 
-TEST(ProjectToGrid, ConservesMassAndMomentum) {
-  Fixture f(5000);
+class Transfer : public ::testing::TestWithParam<bool> {};  // quad4 grid?
+
+TEST_P(Transfer, ProjectionConservesMassAndMomentum) {
+  Fixture f(5000, 1, GetParam());
   project_to_grid(f.ctx, f.cells, f.particles, f.loc, f.nodes);
   const double mass = particle_sum(f, [](Index) { return 1.0; });
   EXPECT_NEAR(grid_sum(f, [](Index) { return 1.0; }), mass, 1e-13 * mass);
@@ -80,8 +83,8 @@ TEST(ProjectToGrid, ConservesMassAndMomentum) {
   EXPECT_NEAR(grid_sum(f, [&](Index i) { return f.nodes.p[i]; }), particle_sum(f, [&](Index p) { return f.particles.pressure[p]; }), 1e-13 * mass);
 }
 
-TEST(InterpolateToParticles, GivesTheParticlesTheGridsMomentumAfterANewmarkStep) {
-  Fixture f(5000, 2);
+TEST_P(Transfer, InterpolationGivesTheParticlesTheGridsMomentumAfterANewmarkStep) {
+  Fixture f(5000, 2, GetParam());
   project_to_grid(f.ctx, f.cells, f.particles, f.loc, f.nodes);
   // A grid Newmark step (beta = 1/4, gamma = 1/2) with an arbitrary new acceleration.
   std::mt19937 rng(3);
@@ -102,8 +105,8 @@ TEST(InterpolateToParticles, GivesTheParticlesTheGridsMomentumAfterANewmarkStep)
   EXPECT_LE((particle_sum(f, [&](Index p) { return Vec2(f.particles.u[p]); }) - grid_mu).norm(), 1e-13 * mass);
 }
 
-TEST(Transfers, ReproduceConstantsAndLinearFields) {
-  Fixture f(3000, 4);
+TEST_P(Transfer, ReproducesConstantsAndLinearFields) {
+  Fixture f(3000, 4, GetParam());
   for (Index p = 0; p < f.particles.X.size(); ++p) f.particles.v[p] = Vec2(0.3, -0.7), f.particles.pressure[p] = 2.5;
   project_to_grid(f.ctx, f.cells, f.particles, f.loc, f.nodes);
   for (Index i = 0; i < f.nodes.size(); ++i) {
@@ -122,13 +125,14 @@ TEST(Transfers, ReproduceConstantsAndLinearFields) {
   }
 }
 
-TEST(ProjectToGrid, DoesNotDependOnTheThreadCount) {
-  auto project = [](int threads) {
+TEST_P(Transfer, ProjectionDoesNotDependOnTheThreadCount) {
+  const bool quad = GetParam();
+  auto project = [quad](int threads) {
     oneapi::tbb::global_control limit(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     oneapi::tbb::task_arena arena(threads);
     std::vector<double> out;
     arena.execute([&] {
-      Fixture f(40000, 5);
+      Fixture f(40000, 5, quad);
       project_to_grid(f.ctx, f.cells, f.particles, f.loc, f.nodes);
       for (Index i = 0; i < f.nodes.size(); ++i) out.insert(out.end(), {f.nodes.lumped_mass[i], f.nodes.v_n[i].x(), f.nodes.a_n[i].y(), f.nodes.p[i]});
     });
@@ -141,6 +145,8 @@ TEST(ProjectToGrid, DoesNotDependOnTheThreadCount) {
   EXPECT_LE(worst, 1e-12);
   std::printf("[transfers] 1 vs 2 threads: worst relative difference %.1e\n", worst);
 }
+
+INSTANTIATE_TEST_SUITE_P(Grid, Transfer, ::testing::Bool(), [](const ::testing::TestParamInfo<bool>& p) { return p.param ? "quad4" : "tri3"; });
 
 }  // namespace
 }  // namespace loom

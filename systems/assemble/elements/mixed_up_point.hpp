@@ -1,4 +1,5 @@
-// Mixed u-p kernel of one material point on a linear background cell (seed 003 eqs 8-26), written in the
+// Mixed u-p kernel of one material point on a background cell with NC corners (seed 003 eqs 8-26; tri3
+// linear, NC = 3, or quad4 bilinear, NC = 4), written in the
 // "positive" form of the pressure equation, (p/kappa - (J - 1), q) (the seed's form times -1, so that the
 // stabilisation adds positive terms). Local dofs node-major [u_x, u_y, p]: 3a + i, 3a + 2.
 //
@@ -12,6 +13,8 @@
 // seed 003 §5: lagged, not linearised). For linear cells the second derivatives vanish and the adjoint is
 // L*(w, q) = (grad q, div w + q / kappa); the residuals are
 //   R_u = rho (b - a_h) + grad p_h,   R_p = (J - 1) - p_h / kappa,
+// (quad4: the bilinear functions' second derivatives d2N/dxdy are left out of L*, as usual for
+// stabilised Q1 elements: they vanish on the cell's mean and the residual stays that of the linear terms),
 // and the terms sum_K (tau P~[R], L*(V))_K are evaluated on the grid's configuration x_n (weights
 // V_n, gradients dN): the seed's extra terms with grad p^ (B^G, K^GG, ...) come from differentiating the
 // current-configuration gradients and are of the order of the step's displacement; leaving them out keeps
@@ -28,21 +31,29 @@
 
 namespace loom {
 
-using UpVector = Eigen::Matrix<double, 9, 1>;
-using UpMatrix = Eigen::Matrix<double, 9, 9>;
+template <int NC>
+using UpVector = Eigen::Matrix<double, 3 * NC, 1>;
+template <int NC>
+using UpMatrix = Eigen::Matrix<double, 3 * NC, 3 * NC>;
+template <int NC>
+using CornerScalars = Eigen::Matrix<double, NC, 1>;
+template <int NC>
+using CornerVectors = Eigen::Matrix<double, NC, 2>;  // rows: corners
 
 // The cell's nodal values (rows: corners) at the Newton iterate.
+template <int NC>
 struct UpCellValues {
-  Mat32 du = Mat32::Zero();      // step displacement
-  Vec3 p = Vec3::Zero();         // pressure
-  Mat32 a = Mat32::Zero();       // Newmark acceleration
-  Mat32 proj_u = Mat32::Zero();  // OSGS projections
-  Vec3 proj_p = Vec3::Zero();
+  CornerVectors<NC> du = CornerVectors<NC>::Zero();      // step displacement
+  CornerScalars<NC> p = CornerScalars<NC>::Zero();       // pressure
+  CornerVectors<NC> a = CornerVectors<NC>::Zero();       // Newmark acceleration
+  CornerVectors<NC> proj_u = CornerVectors<NC>::Zero();  // OSGS projections
+  CornerScalars<NC> proj_p = CornerScalars<NC>::Zero();
 };
 
+template <int NC>
 struct UpPoint {
-  Vec3 N;          // shape functions at x_n
-  Mat32 dN;        // their gradients (the cell's)
+  CornerScalars<NC> N;   // shape functions at x_n
+  CornerVectors<NC> dN;  // their gradients at x_n
   double V0 = 0;   // reference volume
   Mat3 F_n;        // deformation gradient at the start of the step
   double rho_n = 0;  // density at x_n: m / V_n
@@ -57,8 +68,9 @@ struct UpStabilisation {
 };
 
 // Adds the point's contribution; F receives the deformation gradient. False if J <= 0.
-inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, const UpPoint& pt, const UpCellValues& cell,
-                         Mat3& F, UpVector& r, UpMatrix* K) {
+template <int NC>
+bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, const UpPoint<NC>& pt, const UpCellValues<NC>& cell,
+                  Mat3& F, UpVector<NC>& r, UpMatrix<NC>* K) {
   Mat3 dF = Mat3::Identity();
   dF.topLeftCorner<2, 2>() += cell.du.transpose() * pt.dN;
   F = dF * pt.F_n;
@@ -66,7 +78,7 @@ inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& s
   if (!(J > 0.0)) return false;
   const Mat3 Finv = F.inverse();
   const Mat3 JFinvT = J * Finv.transpose();
-  const Mat32 G = pt.dN * pt.F_n.topLeftCorner<2, 2>();
+  const CornerVectors<NC> G = pt.dN * pt.F_n.template topLeftCorner<2, 2>();
   const double p_h = pt.N.dot(cell.p);
   const double ik = material.inv_kappa;
 
@@ -75,9 +87,9 @@ inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& s
   Mat9 A;
   if (K ? !material.deviatoric_stress_tangent(F, P, A) : !material.deviatoric_stress(F, P)) return false;
   P += p_h * JFinvT;
-  const Mat32 f = pt.V0 * G * P.topLeftCorner<2, 2>().transpose();  // f(a, i) = P_ij G_a,j
-  const Mat32 dJ = G * JFinvT.topLeftCorner<2, 2>().transpose();    // dJ(b, k) = J F^-T_kl G_b,l = dJ/d du_b,k
-  for (int a = 0; a < 3; ++a) {
+  const CornerVectors<NC> f = pt.V0 * G * P.topLeftCorner<2, 2>().transpose();  // f(a, i) = P_ij G_a,j
+  const CornerVectors<NC> dJ = G * JFinvT.topLeftCorner<2, 2>().transpose();    // dJ(b, k) = J F^-T_kl G_b,l = dJ/d du_b,k
+  for (int a = 0; a < NC; ++a) {
     r[3 * a] += f(a, 0);
     r[3 * a + 1] += f(a, 1);
     r[3 * a + 2] += pt.V0 * pt.N[a] * (p_h * ik - (J - 1.0));
@@ -90,12 +102,12 @@ inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& s
       for (int k = 0; k < 2; ++k) {
         Eigen::Matrix2d C;  // C_jl = A_ijkl
         C << A(ij(i, 0), ij(k, 0)), A(ij(i, 0), ij(k, 1)), A(ij(i, 1), ij(k, 0)), A(ij(i, 1), ij(k, 1));
-        const Eigen::Matrix3d block = pt.V0 * G * C * G.transpose();
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) (*K)(3 * a + i, 3 * b + k) += block(a, b);
+        const Eigen::Matrix<double, NC, NC> block = pt.V0 * G * C * G.transpose();
+        for (int a = 0; a < NC; ++a)
+          for (int b = 0; b < NC; ++b) (*K)(3 * a + i, 3 * b + k) += block(a, b);
       }
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < NC; ++a)
+      for (int b = 0; b < NC; ++b) {
         for (int i = 0; i < 2; ++i) {
           (*K)(3 * a + i, 3 * b + 2) += pt.V0 * dJ(a, i) * pt.N[b];  // d f(a,i) / d p_b = V_0 (J F^-T G_a)_i N_b
           (*K)(3 * a + 2, 3 * b + i) -= pt.V0 * pt.N[a] * dJ(b, i);
@@ -112,7 +124,7 @@ inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& s
   double Rp = (J - 1.0) - p_h * ik;
   if (stab.projected) Ru -= cell.proj_u.transpose() * pt.N, Rp -= pt.N.dot(cell.proj_p);
   const double t1 = stab.tau1 * Vn, t2 = stab.tau2 * Vn;
-  for (int a = 0; a < 3; ++a) {
+  for (int a = 0; a < NC; ++a) {
     r[3 * a] += t2 * Rp * pt.dN(a, 0);
     r[3 * a + 1] += t2 * Rp * pt.dN(a, 1);
     r[3 * a + 2] += t1 * Ru.dot(pt.dN.row(a)) + t2 * Rp * pt.N[a] * ik;
@@ -124,8 +136,8 @@ inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& s
   // the static Cook's membrane at nu = 0.33 (tau2 / kappa = 0.77). The acceleration term of R_u is kept:
   // dropping it too (P_h[rho a_h] ~ rho a_h) made the dynamic Cook's membrane take 35 iterations, not 26.
   const double keep = stab.projected ? 0.0 : 1.0;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
+  for (int a = 0; a < NC; ++a)
+    for (int b = 0; b < NC; ++b) {
       for (int i = 0; i < 2; ++i) {
         for (int k = 0; k < 2; ++k) (*K)(3 * a + i, 3 * b + k) += t2 * pt.dN(a, i) * dJ(b, k);
         (*K)(3 * a + i, 3 * b + 2) -= keep * t2 * pt.dN(a, i) * pt.N[b] * ik;
@@ -139,19 +151,20 @@ inline bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& s
 // Polynomial pressure projection (Dohrmann-Bochev; seed 003 ref [47]) of one cell, with its points as the
 // quadrature: (1/mu) int (p - Pi_0 p)(q - Pi_0 q) = (1/mu) (M - m m^T / V) with M_ab = sum V_n N_a N_b,
 // m_a = sum V_n N_a, V = sum V_n. Added to the pressure rows (positive form).
+template <int NC>
 struct PppAccumulator {
-  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
-  Vec3 m = Vec3::Zero();
+  Eigen::Matrix<double, NC, NC> M = Eigen::Matrix<double, NC, NC>::Zero();
+  CornerScalars<NC> m = CornerScalars<NC>::Zero();
   double V = 0.0;
-  void add(const Vec3& N, double Vn) { M += Vn * N * N.transpose(), m += Vn * N, V += Vn; }
-  void apply(double inv_mu, const Vec3& p, UpVector& r, UpMatrix* K) const {
+  void add(const CornerScalars<NC>& N, double Vn) { M += Vn * N * N.transpose(), m += Vn * N, V += Vn; }
+  void apply(double inv_mu, const CornerScalars<NC>& p, UpVector<NC>& r, UpMatrix<NC>* K) const {
     if (!(V > 0.0)) return;
-    const Eigen::Matrix3d S = inv_mu * (M - m * m.transpose() / V);
-    const Vec3 Sp = S * p;
-    for (int a = 0; a < 3; ++a) {
+    const Eigen::Matrix<double, NC, NC> S = inv_mu * (M - m * m.transpose() / V);
+    const CornerScalars<NC> Sp = S * p;
+    for (int a = 0; a < NC; ++a) {
       r[3 * a + 2] += Sp[a];
       if (K)
-        for (int b = 0; b < 3; ++b) (*K)(3 * a + 2, 3 * b + 2) += S(a, b);
+        for (int b = 0; b < NC; ++b) (*K)(3 * a + 2, 3 * b + 2) += S(a, b);
     }
   }
 };
