@@ -231,6 +231,7 @@ class Loader {
   void read_grid(const TableReader& grid, GridSpec& g) {
     read_mesh(grid, g.mesh);
     g.quad4 = grid.string("cells") == "quad4";
+    g.ghost_penalty = grid.has("ghost_penalty") ? grid.real("ghost_penalty") : g.quad4 ? 0.1 : 0.0;
     if (!g.quad4) return;
     if (g.mesh.generator != MeshGenerator::rectangle) grid.error("cells", "quad4 cells need generator = \"rectangle\"");
     if (g.mesh.pattern != GridPattern::right) grid.error("pattern", "cells = \"quad4\" are squares, not triangulated: leave pattern out");

@@ -102,6 +102,7 @@ struct BodySpec {
 struct GridSpec {
   bool present = false;
   bool quad4 = false;  // cells = "quad4": bilinear cells of a rectangle
+  double ghost_penalty = 0.0;  // gamma_0 of the face ghost penalty (0: off)
   MeshSpec mesh;
 };
 

@@ -112,6 +112,11 @@ std::vector<KeySpec> build_schema() {
                   "Cell type: tri3 (linear triangles, the seed's P1 grids) or quad4 (bilinear squares of a rectangle; generator = "
                   "\"rectangle\" without pattern or distortion).")
                   .one_of({"tri3", "quad4"}).by_default("tri3"));
+  s.push_back(key("grid.ghost_penalty", K::real,
+                  "gamma_0 of the face ghost penalty on the sides of cut cells (jumps of the normal gradient of u, weight "
+                  "gamma_0 mu h, and of p, gamma_0 h^3 / (2 mu)); it steadies nodes of nearly empty cells, which quad4 grids "
+                  "need at the body's boundary (docs/mpm/README.md §6). 0: off. Default: 0.1 for quad4 cells, 0 for tri3.")
+                  .at_least(0));
   s.push_back(key("grid.generator", K::choice, "rectangle (located by arithmetic unless shifted or distorted) or cooks_membrane (located by walking).")
                   .one_of({"rectangle", "cooks_membrane"}).require());
   s.push_back(key("grid.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/core/types.hpp"
+#include "engine/store/cells.hpp"
 
 namespace loom {
 
@@ -20,6 +21,14 @@ struct GridActivity {
   std::vector<Index> colour_offsets;    // n_colours + 1 into active_by_colour
   std::uint64_t version = 0;  // incremented whenever the active set changes
   int rebuilds = 0;           // times the dof numbering and pattern were rebuilt
+
+  // Faces with a ghost penalty (grid.ghost_penalty > 0; systems/assemble/elements/ghost_face.hpp): sides
+  // shared by two active cells of which at least one is cut by the body's boundary (has a corner that an
+  // inactive cell shares). ghost_faces lists each face's nodes in the kernel's local order (stride
+  // 2 NC - 2) with colours, for the pattern, the scatter and a race-free assembly.
+  Cells ghost_faces;
+  std::vector<Index> ghost_cells;  // 2 per face: the left and right cell
+  std::vector<Index> ghost_ends;   // 2 per face: the corners of the shared side
 
   Index n_active_cells() const { return Index(active_cells.size()); }
 };

@@ -5,6 +5,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/grid_shape.hpp"
 #include "systems/assemble/elements/displacement_point.hpp"
+#include "systems/assemble/elements/ghost_face.hpp"
 #include "systems/assemble/elements/mixed_up_point.hpp"
 #include "systems/update/grid_newmark.hpp"
 
@@ -132,6 +133,31 @@ void assemble_mixed(const Args& x) {
   });
 }
 
+// Face ghost penalty (grid.ghost_penalty): residual K w and tangent K of every listed face, by colour.
+template <int NC, int PN>
+void assemble_ghost(const Args& x) {
+  const SceneSpec& scene = *x.ctx.scene;
+  const double gamma_0 = scene.grid.ghost_penalty;
+  const double mu = scene.materials[std::size_t(scene.bodies[0].material)].mu;
+  const Cells& faces = x.act.ghost_faces;
+  constexpr int NE = PN * kGhostFaceNodes<NC>;
+  for (std::size_t k = 0; k + 1 < faces.colour_offsets.size(); ++k)
+    for_each_in(faces.by_colour.data() + faces.colour_offsets[k], faces.colour_offsets[k + 1] - faces.colour_offsets[k], [&](Index f) {
+      const auto s = std::size_t(f);
+      const GhostFace<NC> face =
+          ghost_face<NC>(x.grid, x.g, x.act.ghost_cells[2 * s], x.act.ghost_cells[2 * s + 1], x.act.ghost_ends[2 * s], x.act.ghost_ends[2 * s + 1]);
+      const Eigen::Matrix<double, NE, NE> K = ghost_penalty_matrix<NC, PN>(x.grid, x.g, face, gamma_0, mu);
+      Eigen::Matrix<double, NE, 1> w;
+      for (int a = 0; a < kGhostFaceNodes<NC>; ++a) {
+        const Index i = face.nodes[std::size_t(a)];
+        w.template segment<2>(PN * a) = x.g.u[i];
+        if constexpr (PN == 3) w[PN * a + 2] = x.g.p[i];
+      }
+      Eigen::Matrix<double, NE, 1> r = K * w;
+      scatter_cell<NE>(f, x.system.scatter[1], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    });
+}
+
 }  // namespace
 
 AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOptions& opt,
@@ -145,8 +171,13 @@ AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOp
   const bool dynamic = ctx.scene->time.integrator == Integrator::newmark;
   const Args args{ctx, opt, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, dynamic};
   const bool quad = grid.stride == 4;
-  if (system.dofs.per_node == 3) quad ? assemble_mixed<4>(args) : assemble_mixed<3>(args);
+  const bool mixed = system.dofs.per_node == 3;
+  if (mixed) quad ? assemble_mixed<4>(args) : assemble_mixed<3>(args);
   else quad ? assemble_displacement<4>(args) : assemble_displacement<3>(args);
+  if (activity.ghost_faces.size() > 0 && system.scatter.size() > 1) {
+    if (mixed) quad ? assemble_ghost<4, 3>(args) : assemble_ghost<3, 3>(args);
+    else quad ? assemble_ghost<4, 2>(args) : assemble_ghost<3, 2>(args);
+  }
 
   // Nodal terms on active nodes: lumped inertia (Newmark) and external loads.
   const DofMap& dofs = system.dofs;

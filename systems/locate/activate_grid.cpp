@@ -1,8 +1,10 @@
 #include "systems/locate/activate_grid.hpp"
 
+#include "systems/locate/ghost_faces.hpp"
+
 namespace loom {
 
-void activate_grid(const StepContext&, const Cells& grid, const PointLocations& particle_loc, const BoundaryConditions<2>& bc,
+void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocations& particle_loc, const BoundaryConditions<2>& bc,
                    GridActivity& activity, LinearSystem& system) {
   const Index n_cells = grid.size();
   // 1. Has the active set changed?
@@ -44,10 +46,15 @@ void activate_grid(const StepContext&, const Cells& grid, const PointLocations& 
     if (kinds[std::size_t(p.dof)] == DofKind::free) kinds[std::size_t(p.dof)] = DofKind::prescribed;
   system.dofs.build(pn, std::move(kinds));
 
-  // 4. Pattern over the active cells and their scatter.
-  build_pattern({&grid}, system.dofs, system.pattern, {&activity.active_cells});
-  system.scatter.resize(1);
+  // 4. Pattern over the active cells (and the ghost-penalty faces, which couple the nodes of two cells)
+  // and their scatters.
+  const bool ghost = ctx.scene && ctx.scene->grid.ghost_penalty > 0.0;
+  if (ghost) find_ghost_faces(grid, n_nodes, activity);
+  if (ghost) build_pattern({&grid, &activity.ghost_faces}, system.dofs, system.pattern, {&activity.active_cells, nullptr});
+  else build_pattern({&grid}, system.dofs, system.pattern, {&activity.active_cells});
+  system.scatter.resize(ghost ? 2 : 1);
   build_scatter(grid, system.dofs, system.pattern, system.scatter[0], &activity.active_cells);
+  if (ghost) build_scatter(activity.ghost_faces, system.dofs, system.pattern, system.scatter[1]);
   system.resize_vectors();
 }
 
