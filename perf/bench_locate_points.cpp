@@ -1,6 +1,6 @@
 // locate (systems/locate): particles per second against the number of particles, 1 and 2 threads, on the
-// dynamic Cook's membrane's rectangle grid (arithmetic search) and on the static one's skewed grid (walk
-// from the previous cell). Each iteration moves every particle by a small random step first, as a time
+// dynamic Cook's membrane's rectangle grid (arithmetic search; triangles, and quad4 squares) and on the
+// static one's skewed grid (walk from the previous cell). Each iteration moves every particle by a small random step first, as a time
 // step would, so walks take a step or two.
 #include <benchmark/benchmark.h>
 
@@ -39,6 +39,8 @@ void run_locate(benchmark::State& state, const SceneSpec& scene) {
 
 void BM_LocateStructured(benchmark::State& state) { run_locate(state, bench::cooks_dynamic(state.range(0), 1)); }
 
+void BM_LocateStructuredQuad(benchmark::State& state) { run_locate(state, bench::cooks_dynamic(state.range(0), 1, "quad4")); }
+
 void BM_LocateWalk(benchmark::State& state) {
   const long long n = state.range(0);
   const int div = std::max(2, int(std::lround(std::sqrt(double(n) / 6.0))));
@@ -48,6 +50,7 @@ void BM_LocateWalk(benchmark::State& state) {
 }
 
 BENCHMARK(BM_LocateStructured)->ArgsProduct({{1000, 10000, 100000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LocateStructuredQuad)->ArgsProduct({{1000, 10000, 100000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LocateWalk)->ArgsProduct({{1000, 10000, 100000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -21,12 +21,13 @@ void with_threads(int threads, Body&& body) {
   arena.execute(body);
 }
 
-inline SceneSpec cooks_dynamic(long long particles, int steps) {
+inline SceneSpec cooks_dynamic(long long particles, int steps, const std::string& cells = "tri3") {
   const int ny = std::max(2, int(std::lround(std::sqrt(double(particles) / (6.0 * 1.6)))));
   const int nx = int(std::lround(1.6 * ny));
   const std::string file = std::string(LOOM_SOURCE_DIR) + "/scenes/cooks_membrane_mpm_dynamic.toml";
   return load_scene(file, {"body[0].mesh.divisions=[" + std::to_string(nx) + "," + std::to_string(ny) + "]", "body[0].particles_per_cell=3",
-                           "time.steps=" + std::to_string(steps), "output.every=0", "solver.residual_relative=1e-6"});
+                           "time.steps=" + std::to_string(steps), "output.every=0", "solver.residual_relative=1e-6",
+                           "grid.cells=\"" + cells + "\""});
 }
 
 }  // namespace loom::bench
