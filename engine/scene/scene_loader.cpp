@@ -12,6 +12,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/mesh/triangle_rules.hpp"
 #include "engine/scene/expression.hpp"
+#include "engine/scene/mesh_options.hpp"
 #include "engine/scene/method_checks.hpp"
 #include "engine/scene/overrides.hpp"
 #include "engine/scene/pfem_options.hpp"
@@ -226,38 +227,6 @@ class Loader {
     if (b.element == Formulation::p1p1_up && b.material != kNoIndex &&
         s.materials[std::size_t(b.material)].model != MaterialModel::neo_hooke_split)
       t.error("element", "p1p1_up takes the pressure of a deviatoric/volumetric split: use it with model = \"neo_hooke_split\"");
-  }
-
-  void read_grid(const TableReader& grid, GridSpec& g) {
-    read_mesh(grid, g.mesh);
-    g.quad4 = grid.string("cells") == "quad4";
-    g.ghost_penalty = grid.has("ghost_penalty") ? grid.real("ghost_penalty") : g.quad4 ? 0.1 : 0.0;
-    if (!g.quad4) return;
-    if (g.mesh.generator != MeshGenerator::rectangle) grid.error("cells", "quad4 cells need generator = \"rectangle\"");
-    if (g.mesh.pattern != GridPattern::right) grid.error("pattern", "cells = \"quad4\" are squares, not triangulated: leave pattern out");
-    if (g.mesh.distortion != 0.0) grid.error("distortion", "cells = \"quad4\" are axis-aligned squares: distortion must be 0");
-  }
-
-  void read_mesh(const TableReader& mesh, MeshSpec& m) {
-    m.where = mesh.where();
-    m.generator = pick<MeshGenerator>(mesh.string("generator"), {{"rectangle", MeshGenerator::rectangle}, {"cooks_membrane", MeshGenerator::cooks_membrane}});
-    const auto div = mesh.ivec2("divisions");
-    m.nx = int(div[0]), m.ny = int(div[1]);
-    if (mesh.has("divisions") && (div[0] < 1 || div[1] < 1)) mesh.error("divisions", "divisions must be >= 1");
-    if (mesh.has("divisions") && double(div[0]) * double(div[1]) > 5e7) mesh.error("divisions", "more than 5e7 cells requested");
-    m.pattern = pick<GridPattern>(mesh.string("pattern"), {{"right", GridPattern::right}, {"alternating", GridPattern::alternating}, {"shifted", GridPattern::shifted}});
-    m.scale = mesh.real("scale");
-    m.distortion = mesh.real("distortion");
-    m.seed = mesh.integer("seed");
-    if (m.generator == MeshGenerator::rectangle) {
-      m.origin = mesh.vec2("origin");
-      if (mesh.present() && !mesh.has("size")) mesh.error("", "missing required key size (for generator = \"rectangle\")");
-      m.size = mesh.vec2("size");
-      if (mesh.has("size") && (m.size.x() <= 0 || m.size.y() <= 0)) mesh.error("size", "width and height must be > 0");
-    } else {
-      for (const char* k : {"origin", "size"})
-        if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"cooks_membrane\" (use scale)");
-    }
   }
 
   void read_boundary(SceneSpec& s, const TableReader& t) {

@@ -11,15 +11,12 @@
 #include "engine/mesh/generators.hpp"
 #include "systems/assemble/elements/ghost_face.hpp"
 #include "systems/locate/ghost_faces.hpp"
+#include "tests/support/grid_stores.hpp"
 
 namespace loom {
 namespace {
 
-struct Grid {
-  Nodes<2> nodes;
-  Cells cells;
-  GridLayout layout;
-};
+using Grid = testing::GridStores;
 
 Grid make_grid(bool quad) {
   RectangleSpec spec;

@@ -10,15 +10,12 @@
 #include "engine/mesh/generators.hpp"
 #include "engine/mesh/grid_shape.hpp"
 #include "systems/locate/locate_points.hpp"
+#include "tests/support/grid_stores.hpp"
 
 namespace loom {
 namespace {
 
-struct Grid {
-  Nodes<2> nodes;
-  Cells cells;
-  GridLayout layout;
-};
+using Grid = testing::GridStores;
 
 Grid rectangle_grid(GridPattern pattern, bool structured, double distortion = 0.0) {
   RectangleSpec spec;

@@ -1,0 +1,40 @@
+#include "engine/scene/mesh_options.hpp"
+
+#include <string>
+
+namespace loom {
+
+void read_grid(const TableReader& grid, GridSpec& g) {
+  read_mesh(grid, g.mesh);
+  g.quad4 = grid.string("cells") == "quad4";
+  g.ghost_penalty = grid.has("ghost_penalty") ? grid.real("ghost_penalty") : g.quad4 ? 0.1 : 0.0;
+  if (!g.quad4) return;
+  if (g.mesh.generator != MeshGenerator::rectangle) grid.error("cells", "quad4 cells need generator = \"rectangle\"");
+  if (g.mesh.pattern != GridPattern::right) grid.error("pattern", "cells = \"quad4\" are squares, not triangulated: leave pattern out");
+  if (g.mesh.distortion != 0.0) grid.error("distortion", "cells = \"quad4\" are axis-aligned squares: distortion must be 0");
+}
+
+void read_mesh(const TableReader& mesh, MeshSpec& m) {
+  m.where = mesh.where();
+  m.generator = mesh.string("generator") == "cooks_membrane" ? MeshGenerator::cooks_membrane : MeshGenerator::rectangle;
+  const auto div = mesh.ivec2("divisions");
+  m.nx = int(div[0]), m.ny = int(div[1]);
+  if (mesh.has("divisions") && (div[0] < 1 || div[1] < 1)) mesh.error("divisions", "divisions must be >= 1");
+  if (mesh.has("divisions") && double(div[0]) * double(div[1]) > 5e7) mesh.error("divisions", "more than 5e7 cells requested");
+  const std::string pattern = mesh.string("pattern");  // one of these after schema validation
+  m.pattern = pattern == "alternating" ? GridPattern::alternating : pattern == "shifted" ? GridPattern::shifted : GridPattern::right;
+  m.scale = mesh.real("scale");
+  m.distortion = mesh.real("distortion");
+  m.seed = mesh.integer("seed");
+  if (m.generator == MeshGenerator::rectangle) {
+    m.origin = mesh.vec2("origin");
+    if (mesh.present() && !mesh.has("size")) mesh.error("", "missing required key size (for generator = \"rectangle\")");
+    m.size = mesh.vec2("size");
+    if (mesh.has("size") && (m.size.x() <= 0 || m.size.y() <= 0)) mesh.error("size", "width and height must be > 0");
+  } else {
+    for (const char* k : {"origin", "size"})
+      if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"cooks_membrane\" (use scale)");
+  }
+}
+
+}  // namespace loom
