@@ -1,8 +1,9 @@
 // The faces of the active grid that carry the ghost penalty (grid.ghost_penalty; the kernel is
 // systems/assemble/elements/ghost_face.hpp): every side shared by two active cells of which at least one
-// is cut, i.e. has a corner that an inactive cell (or no cell: never, the grid's outer boundary is not the
-// body's) shares. Called by activate_grid when the active set changes; fills activity.ghost_faces (nodes
-// in the kernel's order, coloured), ghost_cells and ghost_ends, in ascending order of the left cell.
+// is cut, i.e. has a corner that an inactive cell shares (a corner on the grid's outer boundary alone does
+// not count: there the body is clamped or the grid is too small, not cut). Called by activate_grid when the
+// active set changes; fills activity.ghost_faces (nodes in the kernel's order, coloured), ghost_cells and
+// ghost_ends, in ascending order of the left cell.
 #pragma once
 
 #include "engine/store/cells.hpp"
