@@ -30,13 +30,14 @@ def main():
         kernel, n, t = split(b["name"])
         print(f"| {kernel} | {n} / {int(b['particles'])} | {t} | {b['real_time']:.3f} | {b['items_per_second'] / 1e6:.1f} M |")
     print()
-    print("| particles | threads | ms per step | Newton per step | " + " | ".join(SYSTEMS) + " |")
-    print("| --- | --- | --- | --- | " + " | ".join("---" for _ in SYSTEMS) + " |")
+    print("| grid | particles | threads | ms per step | Newton per step | " + " | ".join(SYSTEMS) + " |")
+    print("| --- | --- | --- | --- | --- | " + " | ".join("---" for _ in SYSTEMS) + " |")
     for b in step:
-        _, n, t = split(b["name"])
+        kernel, n, t = split(b["name"])
+        grid = "quad4" if kernel.endswith("Quad") else "tri3"  # BM_MpmStepQuad: the same on a quad4 grid
         per_step = b["real_time"] / 4  # bench_mpm_step runs 4 steps per iteration
         cells = " | ".join(f"{b[s + '_ms']:.2f}" for s in SYSTEMS)
-        print(f"| {int(b['particles'])} | {t} | {per_step:.1f} | {b['newton_per_step']:.2f} | {cells} |")
+        print(f"| {grid} | {int(b['particles'])} | {t} | {per_step:.1f} | {b['newton_per_step']:.2f} | {cells} |")
 
 
 if __name__ == "__main__":
