@@ -96,6 +96,16 @@ void MpmRun::newton_node() {
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
+  if (!report.converged && m_.grid.stride == 4) {  // the likely cause on bilinear cells: too few particles in some
+    Index sparse = 0;
+    for (Index c : m_.activity.active_cells) sparse += m_.particle_loc.count_in(c) < 4;
+    if (sparse > 0) {
+      std::ostringstream os;
+      os << "; " << sparse << " of the " << m_.activity.active_cells.size() << " active quad4 cells hold fewer than 4 particles "
+         << "(a bilinear cell with fewer has hourglass modes: raise body[0].particles_per_cell, refine the body mesh or coarsen the grid)";
+      status_.failure += os.str();
+    }
+  }
 }
 
 void MpmRun::probes_node() {
