@@ -20,7 +20,6 @@
 //
 //   build-perf/perf/bench_linear_solver --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
-#include <dlfcn.h>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
@@ -30,6 +29,7 @@
 #include <memory>
 
 #include "perf/fem_bench_setup.hpp"
+#include "perf/solver_threads.hpp"
 #include "systems/assemble/assemble_system.hpp"
 
 namespace {
@@ -37,17 +37,9 @@ namespace {
 using loom::Index;
 using loom::SparseMatrix;
 using loom::perf::FemBenchRun;
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-
-bool set_threads(const char* function, int n) {
-  using SetThreads = void (*)(int);
-  auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, function));
-  if (!f) return false;
-  f(n);
-  return true;
-}
+using loom::perf::Clock;
+using loom::perf::seconds;
+using loom::perf::set_threads;
 
 // The tangent and residual at the mid-Newton iterate, one per size.
 struct Problem {

@@ -25,7 +25,6 @@
 //
 //   build-perf/perf/bench_newton_step --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
-#include <dlfcn.h>
 #include <oneapi/tbb/global_control.h>
 
 #include <algorithm>
@@ -40,6 +39,7 @@
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/timing/timers.hpp"
 #include "perf/fem_bench_setup.hpp"
+#include "perf/solver_threads.hpp"
 #include "systems/assemble/assemble_system.hpp"
 #include "systems/solve/solve_linear_step.hpp"
 #include "systems/update/update_iterate.hpp"
@@ -48,18 +48,9 @@ namespace {
 
 using loom::Index;
 using loom::perf::FemBenchRun;
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-
-// Sets a thread count through a C function found at run time; false if no loaded library has it.
-bool set_threads(const char* function, int n) {
-  using SetThreads = void (*)(int);
-  auto* f = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, function));
-  if (!f) return false;
-  f(n);
-  return true;
-}
+using loom::perf::Clock;
+using loom::perf::seconds;
+using loom::perf::set_threads;
 
 // One run per size for every benchmark of that size (set-up at 10^5 cells takes seconds).
 FemBenchRun& run_of(Index n_cells) {
