@@ -24,34 +24,18 @@
 #include <string>
 
 #include "tests/support/test_support.hpp"
+#include "tests/verification/homogeneous_compression_exact.hpp"
 #include "tests/verification/verification_support.hpp"
 
 namespace loom {
 namespace {
 
-struct Homogeneous {
-  double l1, l2, reaction, ux_right;
-};
-
 // The scene's set-up (kept in one place; the test checks the loaded scene agrees with it).
 constexpr double kE = 10.0, kNu = 0.3, kW = 2.0, kH = 1.0, kDepth = 0.3;  // final top displacement 0.3 H
 
-Homogeneous exact_state(double d) {
-  const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu));
-  Homogeneous s;
-  s.l2 = 1.0 - d / kH;
-  double l1 = 1.0;
-  for (int it = 0; it < 50; ++it) {
-    const double f = mu * l1 * l1 + lambda * std::log(l1 * s.l2) - mu;
-    const double step = f / (2.0 * mu * l1 + lambda / l1);
-    l1 -= step;
-    if (std::abs(step) < 1e-16 * l1) break;
-  }
-  s.l1 = l1;
-  const double J = l1 * s.l2;
-  EXPECT_LT(std::abs(mu * l1 + (lambda * std::log(J) - mu) / l1), 1e-13);  // P11 = 0 really holds
-  s.reaction = (mu * s.l2 + (lambda * std::log(J) - mu) / s.l2) * kW;
-  s.ux_right = (l1 - 1.0) * kW;
+verification::HomogeneousCompression exact_state(double d) {
+  const auto s = verification::homogeneous_compression_exact(kE, kNu, kW, kH, d);
+  EXPECT_LT(std::abs(s.p11), 1e-13);  // P11 = 0 really holds
   return s;
 }
 
@@ -83,7 +67,7 @@ void check_compression(const std::string& element) {
   double worst_reaction = 0.0, worst_ux = 0.0;
   for (int n = 1; n <= steps; ++n) {
     const double d = kDepth * kH * time[std::size_t(n)];  // the scene's u_y = -0.3 t on the top
-    const Homogeneous s = exact_state(d);
+    const auto s = exact_state(d);
     const double er = verification::relative_error(reaction[std::size_t(n)], s.reaction);
     const double eu = verification::relative_error(ux[std::size_t(n)], s.ux_right);
     EXPECT_LE(er, 1e-8) << "step " << n << ": reaction " << reaction[std::size_t(n)] << ", exact " << s.reaction;
@@ -97,7 +81,7 @@ void check_compression(const std::string& element) {
               worst_reaction, worst_ux);
 
   // The whole field is the homogeneous one (a patch test with a traction-free edge on a distorted mesh).
-  const Homogeneous last = exact_state(kDepth * kH);
+  const auto last = exact_state(kDepth * kH);
   double max_error = 0.0;
   for (Index i = 0; i < run->nodes().size(); ++i) {
     const Vec2 X = run->nodes().X[i];

@@ -23,6 +23,7 @@
 #include <string>
 
 #include "tests/support/test_support.hpp"
+#include "tests/verification/homogeneous_compression_exact.hpp"
 #include "tests/verification/verification_support.hpp"
 
 namespace loom {
@@ -31,27 +32,8 @@ namespace {
 constexpr double kE = 10.0, kNu = 0.3, kW = 2.0, kH = 1.0, kDepth = 0.5;
 constexpr int kSteps = 50;
 
-struct Homogeneous {
-  double l1, l2, reaction, ux_right;
-};
-
 // Plane-strain Neo-Hooke with a free right edge (homogeneous_compression_test.cpp has the derivation).
-Homogeneous exact_state(double d) {
-  const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu));
-  Homogeneous s;
-  s.l2 = 1.0 - d / kH;
-  double l1 = 1.0;
-  for (int it = 0; it < 50; ++it) {
-    const double step = (mu * l1 * l1 + lambda * std::log(l1 * s.l2) - mu) / (2.0 * mu * l1 + lambda / l1);
-    l1 -= step;
-    if (std::abs(step) < 1e-16 * l1) break;
-  }
-  s.l1 = l1;
-  const double J = l1 * s.l2;
-  s.reaction = (mu * s.l2 + (lambda * std::log(J) - mu) / s.l2) * kW;
-  s.ux_right = (l1 - 1.0) * kW;
-  return s;
-}
+verification::HomogeneousCompression exact_state(double d) { return verification::homogeneous_compression_exact(kE, kNu, kW, kH, d); }
 
 std::string pfem_scene_text() {
   std::string text = testing::read_text(verification::scene_path("homogeneous_compression.toml"));
@@ -90,7 +72,7 @@ void check(const std::string& element, const std::string& scheme, int iso) {
   double worst_reaction = 0.0, worst_ux = 0.0, worst_area = 0.0;
   for (int n = 1; n <= kSteps; ++n) {
     const auto k = std::size_t(n);
-    const Homogeneous s = exact_state(kDepth * kH * time[k]);
+    const auto s = exact_state(kDepth * kH * time[k]);
     const double er = verification::relative_error(reaction[k], s.reaction), eu = verification::relative_error(ux[k], s.ux_right);
     EXPECT_LE(er, 1e-8) << "step " << n;
     EXPECT_LE(eu, 1e-8) << "step " << n;
@@ -116,7 +98,7 @@ void check(const std::string& element, const std::string& scheme, int iso) {
   }
 
   // The whole final state: displacements of every node, F_n of every quadrature point, nodal phi.
-  const Homogeneous last = exact_state(kDepth * kH);
+  const auto last = exact_state(kDepth * kH);
   double max_u = 0.0, max_F = 0.0, max_phi = 0.0;
   for (Index i = 0; i < run->nodes().size(); ++i) {
     const Vec2 X = run->nodes().X[i];
