@@ -20,11 +20,13 @@ std::vector<KeySpec> build_schema() {
   const std::string expr = " A number or a muparser expression in t (time), x, y (reference coordinates).";
   std::vector<KeySpec> s;
   // [scene]
-  s.push_back(key("scene", K::table, "What the scene is and which method runs it.").require());
+  s.push_back(key("scene", K::table, "What the scene is and which method runs it. Papers are cited by short keys ([Schewe 2024], "
+                  "[Moreno et al.], ...), listed under References in README.md.").require());
   s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
   s.push_back(key("scene.method", K::choice,
                   "Method (recipe) that runs the scene: fem (updated-Lagrangian finite elements on a fixed mesh), pfem (remeshing "
-                  "every step, seed 000 §3) or mpm (implicit material point method, seed 003); the others are planned.")
+                  "every step, [Schewe 2024] §3) or mpm (implicit mixed material point method, [Moreno et al.]); es_pfem "
+                  "([Reinold 2021]) and mpm_fem ([Aulisa 2019]) are planned.")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
@@ -32,15 +34,15 @@ std::vector<KeySpec> build_schema() {
   // [time]
   s.push_back(key("time", K::table, "Time stepping.").require());
   s.push_back(key("time.integrator", K::choice,
-                  "static: no inertia; euler_backward: implicit Euler (seed 000 eq 12; method fem); newmark: Newmark with beta = 1/4, "
-                  "gamma = 1/2 on the grid and lumped mass (seed 003 §3.3; method mpm).")
+                  "static: no inertia; euler_backward: implicit Euler ([Schewe 2024] eq 12; methods fem and pfem); newmark: Newmark "
+                  "with beta = 1/4, gamma = 1/2 on the grid and lumped mass ([Moreno et al.] §3.3; method mpm).")
                   .one_of({"static", "euler_backward", "newmark"}).by_default("static"));
   s.push_back(key("time.dt", K::real, "Time step (pseudo-time for static runs; boundary expressions see t = step * dt).").require().above(0));
   s.push_back(key("time.steps", K::integer, "Number of steps.").require().at_least(1));
   s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent (mpm: lumped only).")
                   .one_of({"lumped", "consistent"}).by_default("lumped"));
   s.push_back(key("time.initial_acceleration", K::choice,
-                  "newmark: the particles' acceleration at t = 0: zero (seed 003 Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
+                  "newmark: the particles' acceleration at t = 0: zero ([Moreno et al.] Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
                   "lumped mass, so that a suddenly applied constant load is integrated exactly).")
                   .one_of({"zero", "equilibrium"}).by_default("zero"));
   // [solver]
@@ -57,8 +59,9 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("material", K::table_array, "Materials; give either (E, nu) or (K, G).").require());
   s.push_back(key("material[].name", K::string, "Name bodies refer to.").require());
   s.push_back(key("material[].model", K::choice,
-                  "neo_hooke: seed 000 eq 48-51; linear_elastic: small-strain Hooke; neo_hooke_split: deviatoric Neo-Hooke on "
-                  "the isochoric invariant plus kappa/2 (J - 1)^2 (seed 003 §2.2), the material of the mixed u-p formulation.")
+                  "Plane strain, F33 = 1. neo_hooke: psi = lambda/2 ln^2 J + mu/2 (F:F - 3) - mu ln J ([Schewe 2024] eqs 48-51); "
+                  "linear_elastic: small-strain Hooke, sigma = lambda tr(eps) I + 2 mu eps; neo_hooke_split: psi = mu/2 (J^(-2/3) F:F - 3) "
+                  "+ K/2 (J - 1)^2 ([Moreno et al.] §2.2), the material of the mixed u-p formulation.")
                   .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split"}).require());
   s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
   s.push_back(key("material[].nu", K::real,
@@ -72,31 +75,32 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].name", K::string, "Name boundaries and probes refer to.").require());
   s.push_back(key("body[].material", K::string, "Name of a [[material]].").require());
   s.push_back(key("body[].element", K::choice,
-                  "Element formulation: p1 (linear displacement triangle), tri6 (quadratic displacement triangle, seed 000 §4.1), "
-                  "p1p1_uphi (mixed linear displacement / nodal volume dilatation with polynomial pressure projection, seed 000 §4.2), "
-                  "p1p1_up (method mpm: mixed linear displacement / linear pressure on the grid, seed 003 eqs 16-26). Method mpm "
+                  "Element formulation: p1 (linear displacement triangle), tri6 (quadratic displacement triangle, [Schewe 2024] §4.1), "
+                  "p1p1_uphi (mixed linear displacement / nodal volume dilatation with polynomial pressure projection, [Schewe 2024] "
+                  "§4.2), p1p1_up (method mpm: mixed linear displacement / linear pressure on the grid, [Moreno et al.] eqs 16-26). Method mpm "
                   "takes p1 or p1p1_up; they are the formulation on the background grid.")
                   .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up"}).by_default("p1"));
   s.push_back(key("body[].alpha_s", K::expression,
-                  "PPP stabilisation factor alpha_s of p1p1_uphi (seed 000 eq 30), in stress units: a number, or a formula in the "
-                  "material's K and G (eq 47 suggests K; eq 52 and the benchmarks use K/10).").by_default("\"K/10\""));
+                  "PPP stabilisation factor alpha_s of p1p1_uphi ([Schewe 2024] eq 30), in stress units: a number, or a formula in the "
+                  "material's K, G, E and nu (eq 47 suggests K; eq 52 and the benchmarks use K/10). Larger: smoother pressure, softer "
+                  "response.").by_default("\"K/10\""));
   s.push_back(key("body[].particles_per_cell", K::integer,
                   "Method mpm: material points generated in each cell of the body mesh at the points of a symmetric triangle rule "
                   "(1, 3, 6, 12, 16 or 33; Dunavant), volume = rule weight x cell area, mass = density x volume.")
                   .by_default("3").at_least(1).at_most(33));
   s.push_back(key("body[].stabilisation", K::choice,
-                  "p1p1_up: none (Galerkin, unstable for nu -> 0.5), ppp (polynomial pressure projection, Dohrmann-Bochev, factor "
-                  "1/mu), asgs or osgs (variational subgrid scales, seed 003 §4 eqs 19-26).")
+                  "p1p1_up: none (Galerkin, unstable for nu -> 0.5), ppp (polynomial pressure projection, [Bochev 2006], factor "
+                  "1/mu), asgs or osgs (variational subgrid scales, [Moreno et al.] §4 eqs 19-26).")
                   .one_of({"none", "ppp", "asgs", "osgs"}).by_default("asgs"));
-  s.push_back(key("body[].tau_c1", K::real, "p1p1_up, asgs/osgs: c1 of tau1 = c1 h^2 / (2 mu), h = sqrt(grid cell area) (seed 003 eq 21).").by_default("1.0").above(0));
-  s.push_back(key("body[].tau_c2", K::real, "p1p1_up, asgs/osgs: c2 of tau2 = 2 c2 mu (seed 003 eq 21).").by_default("1.0").above(0));
+  s.push_back(key("body[].tau_c1", K::real, "p1p1_up, asgs/osgs: c1 of tau1 = c1 h^2 / (2 mu), h = sqrt(grid cell area) ([Moreno et al.] eq 21).").by_default("1.0").above(0));
+  s.push_back(key("body[].tau_c2", K::real, "p1p1_up, asgs/osgs: c2 of tau2 = 2 c2 mu ([Moreno et al.] eq 21).").by_default("1.0").above(0));
   s.push_back(key("body[].mesh", K::table, "Mesh generator and its parameters (method mpm: the mesh the particles are generated in).").require());
   s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)).")
                   .one_of({"rectangle", "cooks_membrane"}).require());
   s.push_back(key("body[].mesh.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
   s.push_back(key("body[].mesh.size", K::vec2, "Width and height (rectangle; required there)."));
   s.push_back(key("body[].mesh.divisions", K::ivec2, "Element edges along x and y (cooks_membrane: along the clamped-to-loaded direction and across).").require());
-  s.push_back(key("body[].mesh.pattern", K::choice, "Triangulation of the grid: right, alternating, or shifted (seed 000 Fig 7b).")
+  s.push_back(key("body[].mesh.pattern", K::choice, "Triangulation of the grid: right, alternating, or shifted ([Schewe 2024] Fig 7b).")
                   .one_of({"right", "alternating", "shifted"}).by_default("right"));
   s.push_back(key("body[].mesh.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
   s.push_back(key("body[].mesh.distortion", K::real, "Random move of interior nodes, as a fraction of the node's smallest altitude (no cell can invert up to 0.25).").by_default("0.0").at_least(0).at_most(0.25));
@@ -106,10 +110,10 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].body_force.y", K::expression, "y component." + expr).by_default("0"));
   // [grid]
   s.push_back(key("grid", K::table,
-                  "Method mpm: the background grid (seed 003 §3), fixed triangles or squares that need not conform to the body and "
+                  "Method mpm: the background grid ([Moreno et al.] §3), fixed triangles or squares that need not conform to the body and "
                   "must contain the particles at all times; only cells holding particles are active."));
   s.push_back(key("grid.cells", K::choice,
-                  "Cell type: tri3 (linear triangles, the seed's P1 grids) or quad4 (bilinear squares of a rectangle; generator = "
+                  "Cell type: tri3 (linear triangles, the P1 grids of [Moreno et al.]) or quad4 (bilinear squares of a rectangle; generator = "
                   "\"rectangle\" without pattern or distortion).")
                   .one_of({"tri3", "quad4"}).by_default("tri3"));
   s.push_back(key("grid.ghost_penalty", K::real,
@@ -141,7 +145,7 @@ std::vector<KeySpec> build_schema() {
                   "grid nodes by g(t_n+1) - g(t_n), so g must vanish at t = 0 (the particles start undisplaced)."));
   s.push_back(key("boundary[].displacement.x", K::expression, "Prescribed u_x." + expr));
   s.push_back(key("boundary[].displacement.y", K::expression, "Prescribed u_y." + expr));
-  s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges (seed 000 eq 8)."));
+  s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges ([Schewe 2024] eq 8)."));
   s.push_back(key("boundary[].traction.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("boundary[].traction.y", K::expression, "y component." + expr).by_default("0"));
   s.push_back(key("boundary[].pressure", K::expression, "Method mpm, p1p1_up: prescribed grid pressure p (sigma = sigma_dev + p I) at the region's grid nodes, "
@@ -173,16 +177,16 @@ std::vector<KeySpec> build_schema() {
                   "rejected (triangles removed by the alpha test), isolated (particles in no triangle).")
                   .one_of({"area_change", "changed", "rejected", "isolated"}));
   // [remesh], [map]: pfem only
-  s.push_back(key("remesh", K::table, "PFEM remeshing (method = pfem): constrained Delaunay of the particles and alpha-shape test (seed 000 §3.1)."));
-  s.push_back(key("remesh.alpha", K::real, "alpha of the alpha-shape test (eq 16): a triangle with circumradius > alpha * l_char is removed.").by_default("1.2").above(0));
+  s.push_back(key("remesh", K::table, "PFEM remeshing (method = pfem): constrained Delaunay of the particles and alpha-shape test ([Schewe 2024] §3.1)."));
+  s.push_back(key("remesh.alpha", K::real, "alpha of the alpha-shape test ([Schewe 2024] eq 16): a triangle with circumradius > alpha * l_char is removed.").by_default("1.2").above(0));
   s.push_back(key("remesh.lchar", K::expression,
-                  "Characteristic length l_char of eq 16: a number, or \"local\" for l_char^loc of eqs 17-18 (mean neighbour distance "
+                  "Characteristic length l_char of [Schewe 2024] eq 16: a number, or \"local\" for l_char^loc of eqs 17-18 (mean neighbour distance "
                   "on the previous mesh, averaged over the triangle's corners).").by_default("\"local\""));
   s.push_back(key("remesh.every", K::integer, "Remesh before every this many steps.").by_default("1").at_least(1));
-  s.push_back(key("map", K::table, "PFEM state transfer between meshes (method = pfem; seed 000 §3.2)."));
-  s.push_back(key("map.scheme", K::choice, "cpm: copy from the closest old quadrature point; btm: interpolate in the background triangulation of the old points (eqs 19-21).")
+  s.push_back(key("map", K::table, "PFEM state transfer between meshes (method = pfem; [Schewe 2024] §3.2)."));
+  s.push_back(key("map.scheme", K::choice, "cpm: copy from the closest old quadrature point; btm: interpolate in the background triangulation of the old points ([Schewe 2024] eqs 19-21).")
                   .one_of({"cpm", "btm"}).by_default("cpm"));
-  s.push_back(key("map.iso", K::integer, "BTM interpolation of F: 0 plain, 1 F_vol and F_iso separately, 2 log U and log R of the polar decomposition (eqs 22-23).")
+  s.push_back(key("map.iso", K::integer, "BTM interpolation of F: 0 plain, 1 F_vol and F_iso separately, 2 log U and log R of the polar decomposition ([Schewe 2024] eqs 22-23).")
                   .by_default("0").at_least(0).at_most(2));
   s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total"}).by_default("total"));
   // [output]
