@@ -84,19 +84,22 @@ TEST(MpmQuadGrid, StaticCooksMembraneOnANonConformingQuadGridConvergesTowardTheR
   EXPECT_NEAR(u64, tri64, 0.01 * tri64);
 }
 
-// Too few particles per quad4 cell: 960 particles on the h = 0.1 grid (0.7 per cell) leave hourglass modes and
-// a singular tangent at step 3. The failure says which cells are the likely cause and what to change.
-TEST(MpmQuadGrid, ASingularTangentOnSparseQuadCellsNamesThemInTheFailure) {
+// Too few particles per quad4 cell: 960 particles on the h = 0.1 grid (0.7 per cell) leave hourglass modes.
+// The run fails within a few steps, and the failure says which cells are the likely cause and what to change.
+// How Newton gives up on this ill-posed problem is not asserted: the tangent is singular up to round-off, so
+// whether the factorization reports it ("singular", steps 2-3) or an iterate inverts a cell first ("a cell
+// inverted") depends on the BLAS kernels the CPU picks (OPENBLAS_CORETYPE=SkylakeX or Sandybridge take the
+// second path; tools/portability_check.sh).
+TEST(MpmQuadGrid, SparseQuadCellsFailAndTheFailureNamesThemAndTheFix) {
   const Outcome sparse = run_dynamic({"grid.cells=\"quad4\"", "body[0].mesh.divisions=[16,10]", "body[0].particles_per_cell=3"});
-  EXPECT_FALSE(sparse.summary.converged);
-  EXPECT_NE(sparse.summary.failure.find("singular"), std::string::npos) << sparse.summary.failure;
+  ASSERT_FALSE(sparse.summary.converged);
+  EXPECT_LE(sparse.summary.last_converged_step, 5) << sparse.summary.failure;
   EXPECT_NE(sparse.summary.failure.find("hold fewer than 4 particles"), std::string::npos) << sparse.summary.failure;
   EXPECT_NE(sparse.summary.failure.find("particles_per_cell"), std::string::npos) << sparse.summary.failure;
-  // The triangle grid gets much further (it stops at step 17, when a traction point finds no active cell next
-  // to it: 0.7 particles per cell are too few for any grid, but the tangent stays regular).
+  // The triangle grid gets much further (it stops near step 17, when a traction point finds no active cell
+  // next to it: 0.7 particles per cell are too few for any grid, but the tangent stays regular).
   const Outcome tri = run_dynamic({"body[0].mesh.divisions=[16,10]", "body[0].particles_per_cell=3"});
   EXPECT_GE(tri.summary.last_converged_step, sparse.summary.last_converged_step + 10) << tri.summary.failure;
-  EXPECT_EQ(tri.summary.failure.find("singular"), std::string::npos) << tri.summary.failure;
 }
 
 }  // namespace
