@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -16,6 +17,12 @@ struct FrameArray {
   std::vector<double> values;  // n_entities * components
 };
 
+// One meaning of `pressure` for every method, written into each file's field data beside the arrays.
+inline constexpr const char* kPressureDefinition =
+    "pressure = -tr(sigma)/3: the mean compressive Cauchy stress, positive in compression (every method)";
+inline constexpr const char* kMeanStressDefinition =
+    "mean_stress = tr(sigma)/3 = -pressure: the unknown p of the mixed u-p MPM (sigma = dev(sigma) + p I), positive in tension";
+
 struct Frame {
   int step = 0;
   double time = 0.0;
@@ -24,6 +31,8 @@ struct Frame {
   std::vector<Index> offsets;          // end of each cell in connectivity
   std::vector<std::uint8_t> cell_types;  // VTK cell type of each cell
   std::vector<FrameArray> point_arrays, cell_arrays;
+  // Strings written as the dataset's field data (name, text): what the arrays mean.
+  std::vector<std::pair<std::string, std::string>> notes;
 
   Index n_points() const { return Index(points.size() / 3); }
   Index n_cells() const { return Index(offsets.size()); }

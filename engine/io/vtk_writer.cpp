@@ -3,6 +3,8 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkStringArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -28,6 +30,15 @@ vtkNew<vtkDoubleArray> to_vtk(const FrameArray& a) {
   v->SetNumberOfTuples(vtkIdType(a.values.size() / std::size_t(a.components)));
   std::copy(a.values.begin(), a.values.end(), v->GetPointer(0));
   return v;
+}
+
+void add_notes(vtkDataObject* data, const Frame& frame) {
+  for (const auto& [name, text] : frame.notes) {
+    vtkNew<vtkStringArray> note;
+    note->SetName(name.c_str());
+    note->InsertNextValue(text);
+    data->GetFieldData()->AddArray(note);
+  }
 }
 
 vtkNew<vtkPoints> to_vtk_points(const Frame& frame) {
@@ -67,6 +78,7 @@ void write_vtp(const std::string& path, const Frame& frame) {
   verts->SetData(offsets, connectivity);
   cloud->SetVerts(verts);
   for (const auto& a : frame.point_arrays) cloud->GetPointData()->AddArray(to_vtk(a));
+  add_notes(cloud, frame);
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(cloud);
   write_atomically(writer, path);
@@ -90,6 +102,7 @@ void write_vtu(const std::string& path, const Frame& frame) {
   grid->SetCells(types, cells);
   for (const auto& a : frame.point_arrays) grid->GetPointData()->AddArray(to_vtk(a));
   for (const auto& a : frame.cell_arrays) grid->GetCellData()->AddArray(to_vtk(a));
+  add_notes(grid, frame);
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetInputData(grid);
   write_atomically(writer, path);

@@ -75,6 +75,7 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
   if (!phi.values.empty()) frame.point_arrays.push_back(std::move(phi));
   frame.cell_arrays = {std::move(stress), std::move(pressure), std::move(J), std::move(von_mises), std::move(body)};
+  frame.notes = {{"pressure_definition", kPressureDefinition}};
 }
 
 }  // namespace loom

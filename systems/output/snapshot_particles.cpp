@@ -25,6 +25,7 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
   FrameArray displacement{"displacement", 3, std::vector<double>(3 * un, 0.0)};
   FrameArray velocity{"velocity", 3, std::vector<double>(dynamic ? 3 * un : 0, 0.0)};
   FrameArray pressure{"pressure", 1, std::vector<double>(un, 0.0)};
+  FrameArray mean_stress{"mean_stress", 1, std::vector<double>(mixed ? un : 0, 0.0)};
   FrameArray J{"J", 1, std::vector<double>(un, 0.0)};
   FrameArray stress{"stress", 9, std::vector<double>(9 * un, 0.0)};
   FrameArray von_mises{"von_mises", 1, std::vector<double>(un, 0.0)};
@@ -41,15 +42,20 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
     particle_stress(materials[std::size_t(particles.body[p])], F, mixed, mixed ? particles.pressure[p] : 0.0, sigma);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) stress.values[9 * k + std::size_t(3 * i + j)] = sigma(i, j);
-    const double mean = sigma.trace() / 3.0;
-    pressure.values[k] = mixed ? particles.pressure[p] : mean;
+    const double mean = sigma.trace() / 3.0;  // = the particle's p when mixed (tr dev = 0)
+    pressure.values[k] = -(mixed ? particles.pressure[p] : mean);
+    if (mixed) mean_stress.values[k] = particles.pressure[p];
     J.values[k] = F.determinant();
     von_mises.values[k] = std::sqrt(1.5 * (sigma - mean * Mat3::Identity()).squaredNorm());
   });
   frame.point_arrays.clear();
   frame.point_arrays.push_back(std::move(displacement));
   if (dynamic) frame.point_arrays.push_back(std::move(velocity));
-  for (auto* a : {&pressure, &J, &stress, &von_mises}) frame.point_arrays.push_back(std::move(*a));
+  frame.point_arrays.push_back(std::move(pressure));
+  if (mixed) frame.point_arrays.push_back(std::move(mean_stress));
+  for (auto* a : {&J, &stress, &von_mises}) frame.point_arrays.push_back(std::move(*a));
+  frame.notes = {{"pressure_definition", kPressureDefinition}};
+  if (mixed) frame.notes.emplace_back("mean_stress_definition", kMeanStressDefinition);
 }
 
 void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<2>& g,
@@ -61,6 +67,7 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   FrameArray displacement{"displacement", 3, std::vector<double>(3 * n, 0.0)};
   FrameArray velocity{"velocity", 3, std::vector<double>(g.v.used() ? 3 * n : 0, 0.0)};
   FrameArray pressure{"pressure", 1, std::vector<double>(g.p.used() ? n : 0, 0.0)};
+  FrameArray mean_stress{"mean_stress", 1, std::vector<double>(g.p.used() ? n : 0, 0.0)};
   FrameArray mass{"mass", 1, std::vector<double>(n, 0.0)};
   for (std::size_t i = 0; i < n; ++i) {
     const Index node = Index(i);
@@ -69,7 +76,7 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
       displacement.values[3 * i + std::size_t(d)] = g.u[node][d];
       if (g.v.used()) velocity.values[3 * i + std::size_t(d)] = g.v[node][d];
     }
-    if (g.p.used()) pressure.values[i] = g.p[node];
+    if (g.p.used()) pressure.values[i] = -g.p[node], mean_stress.values[i] = g.p[node];
     mass.values[i] = g.lumped_mass[node];
   }
   frame.connectivity.clear(), frame.offsets.clear(), frame.cell_types.clear();
@@ -84,8 +91,11 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   frame.point_arrays.push_back(std::move(displacement));
   if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
   if (!pressure.values.empty()) frame.point_arrays.push_back(std::move(pressure));
+  if (!mean_stress.values.empty()) frame.point_arrays.push_back(std::move(mean_stress));
   frame.point_arrays.push_back(std::move(mass));
   frame.cell_arrays = {std::move(count)};
+  frame.notes.clear();
+  if (g.p.used()) frame.notes = {{"pressure_definition", kPressureDefinition}, {"mean_stress_definition", kMeanStressDefinition}};
 }
 
 }  // namespace loom

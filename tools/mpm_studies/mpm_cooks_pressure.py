@@ -27,7 +27,7 @@ def grid_pressure(directory):
     g = r.GetOutput()
     xy = vtk_to_numpy(g.GetPoints().GetData())[:, :2]
     cells = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 3)
-    return xy, cells, vtk_to_numpy(g.GetPointData().GetArray("pressure"))
+    return xy, cells, vtk_to_numpy(g.GetPointData().GetArray("mean_stress"))
 
 
 def main():
