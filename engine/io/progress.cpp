@@ -6,6 +6,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "engine/io/console_format.hpp"
+
 namespace loom {
 
 Progress::Progress(int total_steps, bool enabled)
@@ -23,7 +25,7 @@ void Progress::update(int step, double time, int newton_iterations) {
   std::ostringstream os;
   os.precision(4);
   os << "step " << step << "/" << total_ << "  t = " << time << "  newton " << newton_iterations << "  elapsed "
-     << int(elapsed) << " s  remaining ~" << int(eta) << " s";
+     << format_seconds(elapsed) << "  remaining ~" << format_seconds(eta);
   if (tty_) std::cerr << "\r" << os.str() << "\033[K" << std::flush;
   else std::cerr << os.str() << std::endl;
   shown_ = true;

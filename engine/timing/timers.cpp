@@ -96,6 +96,7 @@ void Timers::print_table(std::ostream& os, double wall) const {
     return r;
   };
   const auto flags = os.flags();
+  const auto precision = os.precision();  // the caller's, restored at the end
   os << std::left << std::setw(34) << "system" << std::right << std::setw(9) << "calls" << std::setw(12) << "total s"
      << std::setw(12) << "mean ms" << std::setw(12) << "max ms" << std::setw(9) << "share" << "\n";
   auto row = [&](const std::string& label, const TimerStats& s) {
@@ -121,6 +122,7 @@ void Timers::print_table(std::ostream& os, double wall) const {
   }
   os << "\n";
   os.flags(flags);
+  os.precision(precision);
 }
 
 void Timers::write_json(std::ostream& os, double wall) const {
