@@ -5,7 +5,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -15,7 +18,10 @@
 #include <vector>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/interrupt.hpp"
+#include "engine/io/console_format.hpp"
 #include "engine/io/files.hpp"
+#include "engine/io/run_files.hpp"
 #include "engine/io/run_report.hpp"
 #include "engine/methods/method.hpp"
 #include "engine/scene/scene_loader.hpp"
@@ -26,24 +32,28 @@ namespace {
 constexpr const char* kUsage =
     "usage:\n"
     "  loom run SCENE [--out DIR] [--threads N] [--set key.path=value]... [--quiet] [--verbose] [--profile]\n"
+    "               [--restart DIR|FILE] [--stop-after N]\n"
     "  loom check SCENE [--set key.path=value]...   validate the scene and build its mesh, do not run\n"
     "  loom info SCENE [--set key.path=value]...    print the step graph and the store sizes\n"
     "  loom schema [--markdown]                      print every scene key with type, default and meaning\n"
     "  loom --version\n"
     "--set addresses arrays of tables by index or by name: body[0].mesh.divisions=[16,16],\n"
     "material[rubber].nu=0.3. --profile adds per-step, per-system and per-Newton-iteration timings to\n"
-    "timings.json. Exit codes: 0 success, 1 the run failed, 2 bad input.\n";
+    "timings.json. --restart continues the run whose checkpoint is in DIR (the newest) or FILE, in that\n"
+    "directory; --stop-after N stops after step N and writes its checkpoint. SIGINT / SIGTERM stop after the\n"
+    "current step. Exit codes: 0 success, 1 the run failed, 2 bad input, 128 + signal when interrupted.\n";
 
 struct Args {
-  std::string command, scene, out;
+  std::string program, command, scene, out, restart;
   std::vector<std::string> sets;
-  int threads = 0;
+  int threads = 0, stop_after = 0;
   bool quiet = false, markdown = false, verbose = false, profile = false;
 };
 
 Args parse(int argc, char** argv) {
   Args a;
   std::vector<std::string> v(argv + 1, argv + argc);
+  a.program = argc > 0 ? argv[0] : "loom";
   LOOM_CHECK(!v.empty(), loom::InputError, "missing command\n" << kUsage);
   a.command = v[0];
   for (std::size_t i = 1; i < v.size(); ++i) {
@@ -52,19 +62,24 @@ Args parse(int argc, char** argv) {
       LOOM_CHECK(i + 1 < v.size(), loom::InputError, opt << " needs a value\n" << kUsage);
       return v[++i];
     };
-    if (s == "--out") a.out = value("--out");
-    else if (s == "--set") a.sets.push_back(value("--set"));
-    else if (s.rfind("--set=", 0) == 0) a.sets.push_back(s.substr(6));
-    else if (s == "--threads") {
-      const std::string n = value("--threads");
+    auto positive = [&](const char* opt) {
+      const std::string n = value(opt);
       try {
         std::size_t used = 0;
-        a.threads = std::stoi(n, &used);
-        LOOM_CHECK(used == n.size() && a.threads >= 1, loom::InputError, "");
+        const int v = std::stoi(n, &used);
+        LOOM_CHECK(used == n.size() && v >= 1, loom::InputError, "");
+        return v;
       } catch (const std::exception&) {
-        throw loom::InputError("--threads needs a positive integer, got '" + n + "'");
+        throw loom::InputError(std::string(opt) + " needs a positive integer, got '" + n + "'");
       }
-    } else if (s == "--quiet") a.quiet = true;
+    };
+    if (s == "--out") a.out = value("--out");
+    else if (s == "--restart") a.restart = value("--restart");
+    else if (s == "--stop-after") a.stop_after = positive("--stop-after");
+    else if (s == "--set") a.sets.push_back(value("--set"));
+    else if (s.rfind("--set=", 0) == 0) a.sets.push_back(s.substr(6));
+    else if (s == "--threads") a.threads = positive("--threads");
+    else if (s == "--quiet") a.quiet = true;
     else if (s == "--verbose") a.verbose = true;
     else if (s == "--profile") a.profile = true;
     else if (s == "--markdown") a.markdown = true;
@@ -75,19 +90,57 @@ Args parse(int argc, char** argv) {
   return a;
 }
 
+void print_warnings(const loom::SceneSpec& scene) {
+  for (const auto& w : scene.warnings) std::cerr << w << "\n";
+}
+
+// Where the output goes: --out, the scene's output.directory, or the directory of the checkpoint a restart
+// continues (a restarted run appends to that run's files).
+void resolve_output(const Args& a, const loom::SceneSpec& scene, loom::RunOptions& options) {
+  options.output_directory = a.out.empty() ? scene.output.directory : a.out;
+  std::ostringstream origin;
+  if (!a.out.empty()) origin << "--out " << a.out;
+  else origin << scene.output.where << ": output.directory";
+  options.output_origin = origin.str();
+  if (a.restart.empty()) return;
+  options.restart_file = loom::find_checkpoint(a.restart);
+  const std::string dir = std::filesystem::path(options.restart_file).parent_path().string();
+  std::error_code ec;
+  LOOM_CHECK(a.out.empty() || std::filesystem::equivalent(a.out, dir.empty() ? "." : dir, ec), loom::InputError,
+             "--out " << a.out << ": error: a restarted run continues in the directory of its checkpoint (" << dir
+                      << "); leave --out out");
+  options.output_directory = dir.empty() ? "." : dir;
+  options.output_origin = "--restart " + a.restart;
+}
+
+void print_probes(const loom::SceneSpec& scene, const loom::RunSummary& summary, const std::vector<double>& values) {
+  if (scene.probes.empty() || values.size() != scene.probes.size()) return;
+  std::size_t width = 0;
+  for (const auto& p : scene.probes) width = std::max(width, p.name.size());
+  std::cout << "probes at step " << summary.last_converged_step << " (t = " << summary.last_converged_time << "):\n";
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    char value[32];
+    std::snprintf(value, sizeof value, "%.6g", values[k]);
+    std::cout << "  " << scene.probes[k].name << std::string(width - scene.probes[k].name.size() + 2, ' ') << value << "\n";
+  }
+}
+
 int run(const Args& a) {
   std::optional<oneapi::tbb::global_control> limit;
   if (a.threads > 0) limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(a.threads));
   const int threads = int(oneapi::tbb::global_control::active_value(oneapi::tbb::global_control::max_allowed_parallelism));
 
   const loom::SceneSpec scene = loom::load_scene(a.scene, a.sets);
+  print_warnings(scene);
   loom::RunOptions options;
-  options.output_directory = a.out.empty() ? scene.output.directory : a.out;
+  resolve_output(a, scene, options);
   options.threads = threads;
   options.progress = !a.quiet;
   options.log = &std::cerr;
   options.verbose = a.verbose;
   options.profile = a.profile;
+  options.stop_after = a.stop_after;
+  loom::install_interrupt_handlers();
   auto method = loom::make_method_run(scene, options);
   loom::RunSummary summary = method->run();
   summary.threads = threads;
@@ -99,8 +152,12 @@ int run(const Args& a) {
     std::ostringstream json;
     method->timers().write_json(json, summary.wall_seconds);
     loom::write_file_atomic(options.output_directory + "/timings.json", json.str());
-    if (!a.quiet) method->timers().print_table(std::cout, summary.wall_seconds);
+    if (!a.quiet) {
+      print_probes(scene, summary, method->probe_values());
+      method->timers().print_table(std::cout, summary.wall_seconds);
+    }
   }
+  const std::string steps = loom::count_of(summary.steps_done, "step");
   if (!summary.converged) {
     // The last converged state may lie inside the failed step (converged sub-steps before a cut-back gave up).
     const double step_end = summary.last_converged_step * scene.time.dt;
@@ -111,9 +168,24 @@ int run(const Args& a) {
     std::cerr << "; the output written so far is in " << options.output_directory << "\n";
     return 1;
   }
+  if (summary.interrupted_by || summary.stopped) {
+    const bool checkpointed = summary.stopped || scene.output.checkpoint_every > 0;
+    std::cerr << "loom: " << (summary.stopped ? "stopped as asked" : std::string("interrupted by ") + loom::signal_name(summary.interrupted_by))
+              << " after step " << summary.last_converged_step << " of " << scene.time.steps << " (t = " << summary.last_converged_time
+              << "); output in " << options.output_directory;
+    if (checkpointed) {
+      std::cerr << "; continue with: " << a.program << " run " << a.scene;
+      for (const auto& set : a.sets) std::cerr << " --set '" << set << "'";
+      std::cerr << " --restart " << options.output_directory << "\n";
+    }
+    else
+      std::cerr << "; no checkpoint (set [output] checkpoint_every to be able to continue a run)\n";
+    return summary.stopped ? 0 : 128 + summary.interrupted_by;
+  }
   if (!a.quiet)
-    std::cout << "loom: " << summary.steps_done << " steps, " << summary.newton_iterations << " Newton iterations, "
-              << summary.wall_seconds << " s wall; output in " << options.output_directory << "\n";
+    std::cout << "loom: " << steps << (summary.restarted_from ? " (continued from step " + std::to_string(summary.restarted_from) + ")" : "")
+              << ", " << loom::count_of(summary.newton_iterations, "Newton iteration") << ", " << loom::format_seconds(summary.wall_seconds)
+              << " wall; output in " << options.output_directory << "\n";
   return 0;
 }
 
@@ -152,7 +224,9 @@ int main(int argc, char** argv) {
                "unknown command '" << a.command << "'\n" << kUsage);
     LOOM_CHECK(!a.scene.empty(), loom::InputError, "missing SCENE\n" << kUsage);
     if (a.command == "run") return run(a);
+    LOOM_CHECK(a.restart.empty() && a.stop_after == 0, loom::InputError, "--restart and --stop-after are options of loom run\n" << kUsage);
     const loom::SceneSpec scene = loom::load_scene(a.scene, a.sets);
+    print_warnings(scene);
     loom::RunOptions options;
     options.write_files = false;
     options.progress = false;

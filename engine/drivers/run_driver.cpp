@@ -10,7 +10,16 @@ namespace loom {
 TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks) {
   Progress progress(schedule.steps, schedule.progress);
   TimeLoopCallbacks callbacks;
-  callbacks.step_done = [&](const StepContext& c, const StepStatus& st) { progress.update(c.step, c.t, st.step_iterations); };
+  int checkpointed = -1;
+  auto checkpoint = [&](int step) {
+    if (!hooks.write_checkpoint || step == checkpointed) return;
+    hooks.write_checkpoint(step);
+    checkpointed = step;
+  };
+  callbacks.step_done = [&](const StepContext& c, const StepStatus& st) {
+    progress.update(c.step, c.t, st.step_iterations);
+    if (schedule.checkpoint_every > 0 && c.step % schedule.checkpoint_every == 0) checkpoint(c.step);
+  };
   callbacks.cut_back = [&](const StepContext& c, const StepStatus& st) {
     if (schedule.log) {
       progress.finish();
@@ -26,10 +35,13 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
     result.failure = e.what();
   };
   try {
-    hooks.write_initial_state();
-    result = run_time_loop(schedule.dt, schedule.steps, schedule.max_cutbacks, ctx, graph, status, callbacks);
+    if (schedule.first_step == 1) hooks.write_initial_state();
+    result = run_time_loop(schedule.dt, schedule.steps, schedule.max_cutbacks, ctx, graph, status, callbacks,
+                           TimeLoopRange{schedule.first_step, schedule.stop_after});
     progress.finish();
-    if (!result.completed) hooks.write_last_converged_state(result.failed_step, result.last_converged_time);
+    const bool early = result.interrupted_by != 0 || result.stopped;
+    if (early && (schedule.checkpoint_every > 0 || result.stopped)) checkpoint(result.last_converged_step);
+    if (!result.completed && !early) hooks.write_last_converged_state(result.failed_step, result.last_converged_time);
   } catch (const RunError& e) {
     stop(e);
   }
@@ -43,13 +55,18 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
 }
 
 void summarise_run(const TimeLoopResult& result, const StepStatus& status, const RunSchedule& schedule, RunSummary& summary) {
-  summary.converged = result.completed;
+  summary.converged = result.completed || result.interrupted_by != 0 || result.stopped;
+  summary.completed = result.completed;
+  summary.interrupted_by = result.interrupted_by;
+  summary.stopped = result.stopped;
   summary.steps_done = result.last_converged_step;
   summary.last_converged_step = result.last_converged_step;
-  summary.last_converged_time = result.completed ? double(schedule.steps) * schedule.dt : result.last_converged_time;
+  summary.last_converged_time = result.completed ? double(schedule.steps) * schedule.dt
+                                : summary.converged ? double(result.last_converged_step) * schedule.dt
+                                                    : result.last_converged_time;
   summary.newton_iterations = status.total_iterations;
-  summary.cutbacks = result.cutbacks;
-  if (result.completed) return;
+  summary.cutbacks = status.total_cutbacks;
+  if (summary.converged) return;
   std::ostringstream os;
   if (result.anomaly)
     os << "step " << result.failed_step << " stopped: " << result.failure;

@@ -2,7 +2,8 @@
 // display and the cut-back log, the last converged state written when the run fails (so that the output
 // ends where the run did), the frame writer drained, and the convergence fields of the run summary. A
 // RunError outside the time loop (frame 0, the writer) ends the run as an anomaly, reported like a step
-// that stopped.
+// that stopped. Checkpoints are written every `checkpoint_every` steps and when the run stops early (a
+// signal, or `stop_after`); a restarted run starts after the checkpoint's step without writing step 0.
 #pragma once
 
 #include <functional>
@@ -19,6 +20,9 @@ struct RunSchedule {
   int max_cutbacks = 0;
   bool progress = true;          // one-line progress display on stderr
   std::ostream* log = nullptr;   // cut-back messages; nullptr: silent
+  int checkpoint_every = 0;      // steps between checkpoints; 0: none (but at a stop_after)
+  int first_step = 1;            // > 1 when restarted from the checkpoint of step first_step - 1
+  int stop_after = 0;            // stop after this step as if interrupted (0: run to the end)
 };
 
 struct RunHooks {
@@ -27,6 +31,8 @@ struct RunHooks {
   // step `failed_step`, if the recipe writes frames and has not written that one.
   std::function<void(int failed_step, double last_converged_time)> write_last_converged_state;
   std::function<void()> wait_for_writer;
+  // Writes the checkpoint of the completed step (the writer has finished the step's frame).
+  std::function<void(int step)> write_checkpoint;
 };
 
 TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks);

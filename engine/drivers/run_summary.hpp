@@ -6,13 +6,17 @@
 namespace loom {
 
 struct RunSummary {
-  bool converged = false;           // every step converged
+  bool converged = false;           // every step that was run converged (also when the run stopped early)
+  bool completed = false;           // it reached the last step of the scene
+  int interrupted_by = 0;           // the signal that stopped it between steps (SIGINT, SIGTERM), 0 if none
+  bool stopped = false;             // stopped after the step asked for (`loom run --stop-after N`)
+  int restarted_from = 0;           // the checkpoint's step of a restarted run (0: started at t = 0)
   int steps_requested = 0;
   int steps_done = 0;               // scene steps completed
   int last_converged_step = 0;
   double last_converged_time = 0.0;
   long long newton_iterations = 0;  // linear solves over the run
-  int cutbacks = 0;
+  int cutbacks = 0;                 // over the whole run (a restarted run counts those before its checkpoint)
   double wall_seconds = 0.0;
   std::string failure;              // empty when converged
   std::string linear_solver;        // back-end in use at the end

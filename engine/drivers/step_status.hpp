@@ -11,6 +11,7 @@ struct StepStatus {
   int iterations = 0;       // linear solves of this (sub)step
   int step_iterations = 0;  // summed over the sub-steps of the current scene step
   long long total_iterations = 0;
+  int total_cutbacks = 0;   // step halvings over the run (the time loop counts them)
   std::string failure;
 };
 

@@ -4,14 +4,21 @@
 #include <cmath>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/interrupt.hpp"
 
 namespace loom {
 
 TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext& ctx, StepGraph& graph,
-                             StepStatus& status, const TimeLoopCallbacks& callbacks) {
+                             StepStatus& status, const TimeLoopCallbacks& callbacks, const TimeLoopRange& range) {
   TimeLoopResult result;
   double t = ctx.t;
-  for (int step = 1; step <= steps; ++step) {
+  result.last_converged_step = range.first_step - 1;
+  result.last_converged_time = t;
+  for (int step = range.first_step; step <= steps; ++step) {
+    if (interrupt_requested()) {
+      result.interrupted_by = interrupt_signal();
+      return result;
+    }
     const double t_end = double(step) * dt;
     double h = dt;
     int halvings = 0;
@@ -48,10 +55,15 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
       }
       ++halvings;
       ++result.cutbacks;
+      ++status.total_cutbacks;
       h = 0.5 * ctx.dt;
     }
     result.last_converged_step = step;
     if (callbacks.step_done) callbacks.step_done(ctx, status);
+    if (step == range.stop_after && step < steps) {
+      result.stopped = true;
+      return result;
+    }
   }
   result.completed = true;
   return result;

@@ -2,6 +2,8 @@
 // Newton fails the (sub)step is halved and retried, up to max_cutbacks halvings within one scene step.
 // Sub-steps complete the scene step at exactly t = step * dt (ctx.step_end marks the last one).
 // A RunError thrown by a system (an anomaly, not a Newton failure) ends the loop with the partial result.
+// Between scene steps the loop stops early when a signal asked it to (engine/core/interrupt.hpp) or when
+// the requested last step is reached (`stop_after`); the state is then that of a completed step.
 #pragma once
 
 #include <functional>
@@ -21,6 +23,8 @@ struct TimeLoopResult {
   double failed_dt = 0.0;
   int cutbacks = 0;                  // over the whole run
   bool anomaly = false;              // a system threw (RunError): no cut-back is tried
+  int interrupted_by = 0;            // the signal that stopped the loop between steps, 0 if none
+  bool stopped = false;              // stopped after step `stop_after` as asked
   std::string failure;
 };
 
@@ -29,7 +33,12 @@ struct TimeLoopCallbacks {
   std::function<void(const StepContext&, const StepStatus&)> cut_back;   // after each failed attempt
 };
 
+struct TimeLoopRange {
+  int first_step = 1;   // a restarted run begins after the checkpoint's step (ctx.t holds its time)
+  int stop_after = 0;   // stop (as if interrupted) after this step; 0: run to the end
+};
+
 TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext& ctx, StepGraph& graph,
-                             StepStatus& status, const TimeLoopCallbacks& callbacks);
+                             StepStatus& status, const TimeLoopCallbacks& callbacks, const TimeLoopRange& range = {});
 
 }  // namespace loom

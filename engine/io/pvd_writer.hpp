@@ -15,12 +15,17 @@ class PvdWriter {
   void add(double time, const std::string& file, int part = 0);
   std::string path() const { return directory_ + "/" + name_ + ".pvd"; }
 
- private:
   struct Entry {
     double time;
     std::string file;
     int part;
   };
+  const std::vector<Entry>& entries() const { return entries_; }
+  // A restarted run: the frames its checkpoint had written; rewrites the collection.
+  void restore(std::vector<Entry> entries);
+
+ private:
+  void rewrite() const;
   std::string directory_, name_;
   std::vector<Entry> entries_;
 };

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "engine/core/interrupt.hpp"
+
 namespace loom {
 
 std::string json_escape(const std::string& s) {
@@ -40,7 +42,11 @@ std::string run_json(const RunIdentity& id, const RunSummary& s) {
      << "  \"cells\": " << s.cells << ",\n"
      << "  \"steps_requested\": " << s.steps_requested << ",\n"
      << "  \"steps_done\": " << s.steps_done << ",\n"
+     << "  \"status\": \"" << (!s.converged ? "failed" : s.completed ? "completed" : s.stopped ? "stopped" : "interrupted") << "\",\n"
      << "  \"converged\": " << (s.converged ? "true" : "false") << ",\n"
+     << "  \"completed\": " << (s.completed ? "true" : "false") << ",\n"
+     << "  \"interrupted_by\": \"" << (s.interrupted_by ? signal_name(s.interrupted_by) : "") << "\",\n"
+     << "  \"restarted_from_step\": " << s.restarted_from << ",\n"
      << "  \"last_converged_step\": " << s.last_converged_step << ",\n"
      << "  \"last_converged_time\": " << s.last_converged_time << ",\n"
      << "  \"newton_iterations\": " << s.newton_iterations << ",\n"

@@ -1,5 +1,6 @@
-// run.json: the record of a run (DESIGN §6): version, scene and its hash, threads, steps, convergence,
-// last converged step, Newton iterations, wall time.
+// run.json: the record of a run (DESIGN §6): version, scene and its hash, threads, steps, status
+// (completed, failed, interrupted by a signal, stopped at --stop-after), convergence, last converged step,
+// the checkpoint step a restarted run continued from, Newton iterations, wall time.
 #pragma once
 
 #include <string>

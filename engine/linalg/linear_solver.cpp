@@ -78,4 +78,10 @@ bool LinearSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) { return s
 
 std::string LinearSolve::backend() const { return solver_->name(); }
 
+void LinearSolve::use_backend(const std::string& name) {
+  if (name == solver_->name()) return;
+  solver_ = name == "umfpack" ? make_umfpack_solver() : make_cholmod_solver();
+  analysed_version_ = 0;
+}
+
 }  // namespace loom

@@ -36,6 +36,9 @@ class LinearSolve {
   bool factorize(const SparsePattern& pattern);
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   std::string backend() const;
+  // A restarted run takes the back-end the run it continues had come to (automatic: UMFPACK once a
+  // matrix was not positive definite), so that it factorizes as that run would have.
+  void use_backend(const std::string& name);
   int analyses() const { return analyses_; }
   int factorizations() const { return factorizations_; }
 

@@ -2,8 +2,8 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -13,6 +13,8 @@
 #include "engine/io/files.hpp"
 #include "engine/io/vtk_writer.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
+#include "engine/methods/model_checks.hpp"
+#include "engine/methods/run_output.hpp"
 #include "engine/store/store_report.hpp"
 #include "systems/loads/apply_boundary_conditions.hpp"
 #include "systems/output/snapshot_frame.hpp"
@@ -23,6 +25,7 @@ namespace loom {
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  check_model();
   if (options_.profile) timers_.enable_profile();
   pfem_ = scene_.scene.method == Method::pfem;
   if (pfem_) {
@@ -38,6 +41,23 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
 }
 
 FemRun::~FemRun() = default;
+
+// Scene errors that need the mesh and that only a run cares about (tests build models without conditions):
+// a static body free to move, a point probe off every body.
+void FemRun::check_model() const {
+  std::vector<const Cells*> blocks;
+  for (const auto& c : m_.cells) blocks.push_back(&c);
+  check_rigid_motions_held(scene_, m_.nodes, blocks, m_.bc, m_.node_body);
+  std::vector<Vec2> X(std::size_t(m_.nodes.size()));
+  for (Index i = 0; i < m_.nodes.size(); ++i) X[std::size_t(i)] = m_.nodes.X[i];
+  std::vector<Index> corners, corner_body;
+  for (const auto& cb : m_.cells)
+    for (Index c = 0; c < cb.size(); ++c) {
+      for (int a = 0; a < 3; ++a) corners.push_back(cb.node(c, a));
+      corner_body.push_back(cb.body[c]);
+    }
+  check_point_probes_inside(scene_, X, corners, corner_body);
+}
 
 void FemRun::build_graph() {
   graph_ = std::make_unique<StepGraph>(pfem_ ? "pfem" : "fem", ctx_, timers_);
@@ -163,21 +183,6 @@ void FemRun::describe(std::ostream& os) const {
   graph_->print(os);
 }
 
-void FemRun::open_output() {
-  const std::string& dir = options_.output_directory;
-  make_directories(dir);
-  // Frames of an earlier run of this scene would otherwise sit beside the new ones.
-  const std::string stem = file_stem(scene_.scene.name);
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(stem + "_", 0) == 0 && entry.path().extension() == ".vtu") std::filesystem::remove(entry.path());
-  }
-  pvd_ = PvdWriter(dir, stem);
-  std::vector<std::string> names;
-  for (const auto& p : scene_.probes) names.push_back(p.name);
-  probe_writer_.open(dir + "/probes.csv", names);
-}
-
 void FemRun::write_initial_state() {
   // Step 0: loads at t = 0, one assembly for the reactions, probes and the first frame.
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
@@ -195,9 +200,17 @@ RunSummary FemRun::run() {
   summary.steps_requested = scene_.time.steps;
   summary.dofs = m_.system.dofs.n_free;
   for (const auto& c : m_.cells) summary.cells += c.size();
-  if (options_.write_files) open_output();
+  RunSchedule schedule{scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, options_.progress, options_.log};
+  schedule.checkpoint_every = options_.write_files ? scene_.output.checkpoint_every : 0;
+  schedule.stop_after = options_.stop_after;
+  std::optional<CheckpointHeader> restart;
+  if (!options_.restart_file.empty()) {
+    restart = restore_checkpoint(CheckpointReader(options_.restart_file));
+    schedule.first_step = restart->step + 1;
+    summary.restarted_from = restart->step;
+  }
+  if (options_.write_files) open_run_output(scene_, options_, restart ? &*restart : nullptr, pvd_, probe_writer_);
 
-  const RunSchedule schedule{scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, options_.progress, options_.log};
   RunHooks hooks;
   hooks.write_initial_state = [&] { write_initial_state(); };
   hooks.write_last_converged_state = [&](int failed_step, double last_converged_time) {
@@ -209,6 +222,7 @@ RunSummary FemRun::run() {
     output_node();
   };
   hooks.wait_for_writer = [&] { writer_.wait(); };
+  if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summarise_run(result, status_, schedule, summary);
   summary.linear_solver = solver_.backend();

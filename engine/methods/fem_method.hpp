@@ -16,6 +16,7 @@
 #include "engine/io/pvd_writer.hpp"
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/linalg/linear_system.hpp"
+#include "engine/io/checkpoint.hpp"
 #include "engine/methods/fem_model.hpp"
 #include "engine/methods/method.hpp"
 #include "engine/methods/pfem_remesh.hpp"
@@ -29,6 +30,8 @@
 #include "systems/output/evaluate_probes.hpp"
 
 namespace loom {
+
+struct CheckpointHeader;
 
 class FemRun final : public MethodRun {
  public:
@@ -45,15 +48,18 @@ class FemRun final : public MethodRun {
   const std::vector<QuadPoints<2>>& quad_points() const { return m_.quad; }
   const LinearSystem& system() const { return m_.system; }
   const BoundaryConditions<2>& boundary_conditions() const { return m_.bc; }
-  const std::vector<double>& probe_values() const { return probe_values_; }
+  const std::vector<double>& probe_values() const override { return probe_values_; }
   const RemeshReport& last_remesh() const { return last_remesh_; }
   const StepGraph& graph() const { return *graph_; }
   const Timers& timers() const override { return timers_; }
 
  private:
+  void check_model() const;
   void build_graph();
-  void open_output();
   void write_initial_state();
+  // engine/methods/fem_checkpoint.cpp
+  void write_checkpoint(int step);
+  CheckpointHeader restore_checkpoint(const CheckpointReader& r);
   void remesh_node();
   void newton_node();
   void probes_node();

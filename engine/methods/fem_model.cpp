@@ -62,6 +62,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   system.scatter.resize(cells.size());
   for (std::size_t b = 0; b < cells.size(); ++b) build_scatter(cells[b], system.dofs, system.pattern, system.scatter[b]);
   system.resize_vectors();
+
 }
 
 }  // namespace loom

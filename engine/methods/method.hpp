@@ -6,6 +6,7 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "engine/drivers/run_summary.hpp"
 #include "engine/scene/scene_spec.hpp"
@@ -21,6 +22,9 @@ struct RunOptions {
   bool verbose = false;          // Newton residuals of every iteration to `log`
   bool profile = false;          // per-step profile in timings.json (engine/timing/profile.hpp)
   std::ostream* log = nullptr;   // run messages (cut-backs, failure); nullptr: silent
+  std::string output_origin;     // what named the output directory, for messages: "--out" or file:line: output.directory
+  std::string restart_file;      // continue from this checkpoint (engine/io/checkpoint.hpp); empty: start at t = 0
+  int stop_after = 0;            // stop after this step and write its checkpoint (0: run to the end)
 };
 
 class MethodRun {
@@ -33,6 +37,8 @@ class MethodRun {
   virtual RunSummary run() = 0;
   // Per-system timings of the last run (the table at exit and timings.json).
   virtual const Timers& timers() const = 0;
+  // The probes' values at the last step written to probes.csv, in the order of the scene's probes.
+  virtual const std::vector<double>& probe_values() const = 0;
 };
 
 // Builds the stores of the scene's method; scene errors that need the mesh are InputErrors.

@@ -1,8 +1,8 @@
 #include "engine/methods/mpm_method.hpp"
 
 #include <chrono>
-#include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -11,8 +11,11 @@
 #include "engine/drivers/time_loop.hpp"
 #include "engine/io/files.hpp"
 #include "engine/io/vtk_writer.hpp"
+#include "engine/methods/build_mesh.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
+#include "engine/methods/model_checks.hpp"
 #include "engine/methods/mpm_newton_problem.hpp"
+#include "engine/methods/run_output.hpp"
 #include "engine/store/store_report.hpp"
 #include "systems/loads/apply_grid_loads.hpp"
 #include "systems/locate/activate_grid.hpp"
@@ -25,6 +28,10 @@ namespace loom {
 MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  // A static model must hold the active grid's rigid motions; a point probe must start in the body.
+  check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
+  const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
+  check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
   probe_plan_ = plan_particle_probes(scene_);
   build_graph();
 }
@@ -176,20 +183,6 @@ void MpmRun::describe(std::ostream& os) const {
   graph_->print(os);
 }
 
-void MpmRun::open_output() {
-  const std::string& dir = options_.output_directory;
-  make_directories(dir);
-  const std::string stem = file_stem(scene_.scene.name);
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string(), ext = entry.path().extension().string();
-    if (name.rfind(stem + "_", 0) == 0 && (ext == ".vtu" || ext == ".vtp")) std::filesystem::remove(entry.path());
-  }
-  pvd_ = PvdWriter(dir, stem);
-  std::vector<std::string> names;
-  for (const auto& p : scene_.probes) names.push_back(p.name);
-  probe_writer_.open(dir + "/probes.csv", names);
-}
-
 // a_0 = M^-1 (f_ext - f_int) on the active grid at t = 0 (lumped mass), interpolated to the particles:
 // a load applied from t = 0 on is then integrated exactly by Newmark (free fall: 1/2 g t^2).
 void MpmRun::initial_acceleration() {
@@ -227,9 +220,17 @@ RunSummary MpmRun::run() {
   RunSummary summary;
   summary.steps_requested = scene_.time.steps;
   summary.cells = m_.grid.size();
-  if (options_.write_files) open_output();
+  RunSchedule schedule{scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, options_.progress, options_.log};
+  schedule.checkpoint_every = options_.write_files ? scene_.output.checkpoint_every : 0;
+  schedule.stop_after = options_.stop_after;
+  std::optional<CheckpointHeader> restart;
+  if (!options_.restart_file.empty()) {
+    restart = restore_checkpoint(CheckpointReader(options_.restart_file));
+    schedule.first_step = restart->step + 1;
+    summary.restarted_from = restart->step;
+  }
+  if (options_.write_files) open_run_output(scene_, options_, restart ? &*restart : nullptr, pvd_, probe_writer_);
 
-  const RunSchedule schedule{scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, options_.progress, options_.log};
   RunHooks hooks;
   hooks.write_initial_state = [&] { write_initial_state(); };
   hooks.write_last_converged_state = [&](int failed_step, double last_converged_time) {
@@ -240,6 +241,7 @@ RunSummary MpmRun::run() {
     output_node();
   };
   hooks.wait_for_writer = [&] { writer_.wait(); };
+  if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summary.dofs = m_.system.dofs.n_free;
   summarise_run(result, status_, schedule, summary);

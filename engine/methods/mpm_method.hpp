@@ -15,6 +15,7 @@
 #include "engine/drivers/step_status.hpp"
 #include "engine/graph/step_graph.hpp"
 #include "engine/io/async_writer.hpp"
+#include "engine/io/checkpoint.hpp"
 #include "engine/io/probe_writer.hpp"
 #include "engine/io/pvd_writer.hpp"
 #include "engine/linalg/linear_solver.hpp"
@@ -24,6 +25,8 @@
 #include "systems/output/particle_probes.hpp"
 
 namespace loom {
+
+struct CheckpointHeader;
 
 class MpmRun final : public MethodRun {
  public:
@@ -36,14 +39,16 @@ class MpmRun final : public MethodRun {
 
   // Read access for tests, tools and benchmarks.
   const MpmModel& model() const { return m_; }
-  const std::vector<double>& probe_values() const { return probe_values_; }
+  const std::vector<double>& probe_values() const override { return probe_values_; }
   const StepGraph& graph() const { return *graph_; }
   const LinearSolve& solver() const { return solver_; }
 
  private:
   void build_graph();
-  void open_output();
   void write_initial_state();
+  // engine/methods/mpm_checkpoint.cpp
+  void write_checkpoint(int step);
+  CheckpointHeader restore_checkpoint(const CheckpointReader& r);
   void initial_acceleration();
   void newton_node();
   void probes_node();

@@ -99,6 +99,12 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
     if (settings.remesh.local) average_neighbour_distance(x, old_local, d_avg);  // eq 17 on the previous mesh
     RemeshResult r;
     remesh_points(x, constraints, settings.remesh, d_avg, r);
+    // Nothing to solve on, and halving the step cannot bring the triangles back: stop at once.
+    LOOM_CHECK(!r.triangles.empty() || pts.empty(), RunError,
+               "remesh: the alpha shape (remesh.alpha = " << settings.remesh.alpha << ", l_char "
+                   << (settings.remesh.local ? std::string("local") : std::to_string(settings.remesh.l_char))
+                   << ") removed every triangle of body \"" << m.scene.bodies[b].name
+                   << "\": raise remesh.alpha (triangles whose circumradius exceeds alpha * l_char are removed)");
     for (Index v : r.triangles) triangles[b].push_back(pts[std::size_t(v)]);
     report.rejected += r.rejected, report.isolated += r.isolated, report.triangles += r.triangles.size() / 3;
     report.area_before += corner_area(m.nodes, topo.triangles[b]);
@@ -215,8 +221,17 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
 
   transfer.stop();
   ScopedTimer numbering(timers, "remesh/rebuild_system");
-  // 6. Boundary conditions, dofs, sparsity and scatter on the new mesh (the symbolic factorization is
-  //    redone because the pattern version changes).
+  rebuild_system(m, topo, report.changed);
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    topo.triangles[b] = triangles[b];
+    topo.boundary[b] = boundary_of(triangles[b]);
+  }
+  return report;
+}
+
+void rebuild_system(FemModel& m, const PfemTopology& topo, bool connectivity_changed) {
+  // Boundary conditions, dofs, sparsity and scatter on the new mesh (the symbolic factorization is
+  // redone because the pattern version changes).
   const int per_node = m.system.dofs.per_node;
   m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, per_node, /*tie_mid_nodes=*/true, &topo.tractions);
   std::vector<DofKind> kinds = dof_kinds(m.bc, m.cells, m.nodes.size(), per_node);
@@ -226,7 +241,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   for (Index i = 0; i < m.nodes.size(); ++i)
     if (!in_cell[std::size_t(i)])  // an isolated particle carries no equation
       for (int d = 0; d < per_node; ++d) kinds[std::size_t(i * per_node + d)] = DofKind::absent;
-  if (report.changed || m.system.dofs.n_dofs() != Index(kinds.size()) || m.system.dofs.kind != kinds) {
+  if (connectivity_changed || m.system.dofs.n_dofs() != Index(kinds.size()) || m.system.dofs.kind != kinds) {
     m.system.dofs.build(per_node, std::move(kinds), m.bc.ties);
     std::vector<const Cells*> blocks;
     for (const auto& c : m.cells) blocks.push_back(&c);
@@ -235,11 +250,6 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   m.system.scatter.resize(m.cells.size());
   for (std::size_t k = 0; k < m.cells.size(); ++k) build_scatter(m.cells[k], m.system.dofs, m.system.pattern, m.system.scatter[k]);
   m.system.resize_vectors();
-  for (std::size_t b = 0; b < n_bodies; ++b) {
-    topo.triangles[b] = triangles[b];
-    topo.boundary[b] = boundary_of(triangles[b]);
-  }
-  return report;
 }
 
 }  // namespace loom

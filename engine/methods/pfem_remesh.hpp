@@ -47,4 +47,9 @@ PfemTopology initial_topology(const FemModel& model);
 // Remeshes the model's bodies at X = X_ref + u_n and transfers the state; see the header comment.
 RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topology, FemModel& model, Timers& timers);
 
+// Boundary conditions (eq-24 ties, frozen tractions of `topology`), dofs, sparsity and scatters of the
+// model's current cells; the dof numbering and pattern are rebuilt if the connectivity changed or the dof
+// kinds differ (a restart from a checkpoint passes true).
+void rebuild_system(FemModel& model, const PfemTopology& topology, bool connectivity_changed);
+
 }  // namespace loom

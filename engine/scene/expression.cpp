@@ -17,7 +17,7 @@ struct Expression::Impl {
   bool constant = false, uses_time = false;
 };
 
-Expression::Expression(const std::string& text, const std::string& where) : impl_(std::make_unique<Impl>()) {
+Expression::Expression(const std::string& text, const std::string& where, int dimension) : impl_(std::make_unique<Impl>()) {
   impl_->text = text;
   impl_->where = where;
   try {
@@ -31,6 +31,13 @@ Expression::Expression(const std::string& text, const std::string& where) : impl
     const auto used = impl_->parser.GetUsedVar();
     impl_->constant = used.empty();
     impl_->uses_time = used.count("t") > 0;
+    // z is defined so that a 2D scene's z gets a message that says why, not "unexpected token".
+    if (dimension < 3 && used.count("z")) {
+      std::ostringstream os;
+      os << where << ": invalid expression \"" << text << "\": uses z, but the scene is two-dimensional (scene.dimension = "
+         << dimension << "): the variables are t, x, y";
+      throw InputError(os.str());
+    }
   } catch (const mu::Parser::exception_type& e) {
     std::ostringstream os;
     os << where << ": invalid expression \"" << text << "\": " << e.GetMsg();
@@ -51,9 +58,9 @@ double Expression::operator()(double t, double x, double y, double z) const {
   return v;
 }
 
-std::string Expression::compile_error(const std::string& text) {
+std::string Expression::compile_error(const std::string& text, int dimension) {
   try {
-    Expression e(text, "");
+    Expression e(text, "", dimension);
   } catch (const InputError& err) {
     const std::string msg = err.what();
     const auto colon = msg.find("\": ");

@@ -13,8 +13,8 @@ namespace loom {
 class Expression {
  public:
   // Throws InputError naming `where` (file:line:column and key) if the text does not compile or uses a
-  // variable other than t, x, y, z.
-  Expression(const std::string& text, const std::string& where);
+  // variable other than t, x, y (and z when dimension = 3).
+  Expression(const std::string& text, const std::string& where, int dimension = 2);
   ~Expression();
   Expression(Expression&&) noexcept;
   Expression& operator=(Expression&&) noexcept;
@@ -24,7 +24,7 @@ class Expression {
   double operator()(double t, double x, double y, double z = 0.0) const;
   const std::string& text() const;
   // The muparser message if `text` does not compile (or uses an unknown variable), empty if it does.
-  static std::string compile_error(const std::string& text);
+  static std::string compile_error(const std::string& text, int dimension = 2);
   // True when the value does not depend on t, x, y, z (a plain number).
   bool is_constant() const;
   bool depends_on_time() const;

@@ -39,7 +39,7 @@ std::string hash_text(const std::string& text) {
 
 void check_expression(const std::optional<ExpressionSpec>& e, Diagnostics& diag) {
   if (!e) return;
-  const std::string err = Expression::compile_error(e->text);
+  const std::string err = Expression::compile_error(e->text, 2);  // scene.dimension is 2 (the schema allows no other yet)
   if (!err.empty()) diag.error(e->where, e->key, "invalid expression \"" + e->text + "\": " + err);
 }
 
@@ -207,7 +207,25 @@ class Loader {
     }
     read_mesh(t.table("mesh"), b.mesh);
     b.body_force = read_vector(t.table("body_force"), diag_);
+    warn_if_locking(s, t, b);
     s.bodies.push_back(b);
+  }
+
+  // Linear displacement triangles lock as nu -> 1/2: the divergence-free displacements they can represent
+  // are too few, and the answer comes out far too stiff without any sign of trouble (16 % on a bonded block
+  // at nu = 0.4999, 73 % on Cook's membrane). Allowed (it is the baseline the other elements are measured
+  // against), but said.
+  void warn_if_locking(SceneSpec& s, const TableReader& t, const BodySpec& b) {
+    if (b.element != Formulation::p1 || b.material == kNoIndex) return;
+    const MaterialSpec& m = s.materials[std::size_t(b.material)];
+    if (!(m.nu > 0.49)) return;
+    std::ostringstream os;
+    os << (t.has("element") ? t.where("element") : t.where()) << ": warning: body[" << s.bodies.size() << "].element: p1 (linear "
+       << "displacement triangles) locks for nearly incompressible materials, and material \"" << m.name << "\" has nu = " << m.nu
+       << " > 0.49: displacements come out too small (73 % on Cook's membrane at nu = 0.4999). Use element = "
+       << (s.scene.method == Method::mpm ? "\"p1p1_up\" (mixed u-p, with model = \"neo_hooke_split\")"
+                                         : "\"p1p1_uphi\" (mixed u-phi, model neo_hooke) or \"tri6\" (quadratic)");
+    s.warnings.push_back(os.str());
   }
 
   // Options of method mpm on a body (seed 003): particles, and the stabilisation of p1p1_up.
@@ -340,6 +358,8 @@ class Loader {
     const auto t = root_.table("output");
     s.output.directory = t.has("directory") ? t.string("directory") : "out/" + s.scene.name;
     s.output.every = int(t.integer("every"));
+    s.output.checkpoint_every = int(t.integer("checkpoint_every"));
+    s.output.where = t.has("directory") ? t.where("directory") : t.where();
   }
 
   // Inertia and body forces act through the density: a zero density would silently drop them.

@@ -143,6 +143,8 @@ struct PfemSpec {
 struct OutputSpec {
   std::string directory;
   int every = 1;
+  int checkpoint_every = 0;  // steps between checkpoints (0: none)
+  SourceRef where;           // of the directory key (or of [output])
 };
 
 struct SceneSpec {
@@ -159,6 +161,9 @@ struct SceneSpec {
   std::vector<ProbeSpec> probes;
   PfemSpec pfem;
   OutputSpec output;
+  // Things that are allowed but rarely meant (file:line:column: warning: key: why), printed on stderr by
+  // the program; the run goes on.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace loom

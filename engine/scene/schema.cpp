@@ -194,6 +194,11 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("output.directory", K::string, "Output directory (relative to the working directory); `loom run --out` replaces it.")
                   .by_default("\"out/<scene.name>\""));
   s.push_back(key("output.every", K::integer, "Steps between VTK frames (0: no frames); the initial and the last state are always written.").by_default("1").at_least(0));
+  s.push_back(key("output.checkpoint_every", K::integer,
+                  "Steps between checkpoints (0: none): checkpoint_NNNNNN.loom in the output directory, one binary file with the "
+                  "whole state of the run; only the newest is kept, and one is also written when the run is interrupted "
+                  "(SIGINT, SIGTERM). `loom run SCENE --restart DIR` continues from it as if the run had not stopped.")
+                  .by_default("0").at_least(0));
   return s;
 }
 

@@ -77,8 +77,12 @@ struct Cells {
   }
 
   template <class Visit>
-  void for_each_column(Visit&& f) const {
+  void for_each_column(Visit&& f) {
     f("nodes", nodes), f("body", body), f("colour", colour), f("neighbour", neighbour), f("measure", measure), f("gradient", gradient);
+  }
+  template <class Visit>
+  void for_each_column(Visit&& f) const {
+    const_cast<Cells*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
   }
 };
 

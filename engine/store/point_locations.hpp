@@ -41,8 +41,12 @@ struct PointLocations {
   }
 
   template <class Visit>
-  void for_each_column(Visit&& f) const {
+  void for_each_column(Visit&& f) {
     f("cell", cell), f("N", N), f("F", F);
+  }
+  template <class Visit>
+  void for_each_column(Visit&& f) const {
+    const_cast<PointLocations*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
   }
 };
 

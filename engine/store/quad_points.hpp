@@ -40,8 +40,12 @@ struct QuadPoints {
   const double* grad(Index q) const { return dN.data() + static_cast<std::size_t>(q) * nodes_per_cell * D; }
 
   template <class Visit>
-  void for_each_column(Visit&& f) const {
+  void for_each_column(Visit&& f) {
     f("weight_n", weight_n), f("dN", dN), f("F_n", F_n), f("F", F);
+  }
+  template <class Visit>
+  void for_each_column(Visit&& f) const {
+    const_cast<QuadPoints*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
   }
 };
 

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 
 namespace loom::testing {
@@ -179,6 +180,14 @@ std::vector<std::string> files_under(const std::string& dir) {
     if (e.is_regular_file()) r.push_back(std::filesystem::relative(e.path(), dir).string());
   std::sort(r.begin(), r.end());
   return r;
+}
+
+std::string without_warnings(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, kept;
+  while (std::getline(in, line))
+    if (line.find(": warning: ") == std::string::npos) kept += line + "\n";
+  return kept;
 }
 
 bool looks_like_crash(const std::string& err) {

@@ -37,5 +37,7 @@ std::vector<std::string> files_under(const std::string& dir);
 
 // A message that says the program crashed or hit a programming error instead of reporting bad input.
 bool looks_like_crash(const std::string& stderr_text);
+// stderr without the scene's warning lines ("file:line:column: warning: ..."), e.g. p1 at nu > 0.49.
+std::string without_warnings(const std::string& stderr_text);
 
 }  // namespace loom::testing

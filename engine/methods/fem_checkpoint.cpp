@@ -1,0 +1,81 @@
+// Checkpoints of the fem and pfem recipes: every column of the node, cell and quadrature-point stores,
+// the PFEM topology the next remesh starts from, and the run's header (engine/methods/run_output.hpp).
+// What follows from them -- boundary conditions on the current mesh, dof numbering, sparsity, scatters,
+// the probes' nodes -- is rebuilt on restore exactly as a remesh rebuilds it, so that the restarted run
+// computes what the uninterrupted one would have, bit for bit.
+#include <string>
+
+#include "engine/core/errors.hpp"
+#include "engine/io/run_files.hpp"
+#include "engine/methods/fem_method.hpp"
+#include "engine/methods/run_output.hpp"
+
+namespace loom {
+
+void FemRun::write_checkpoint(int step) {
+  writer_.wait();  // the step's frame is in the collection
+  ScopedTimer timer(timers_, "checkpoint");
+  CheckpointWriter w;
+  CheckpointHeader h;
+  h.step = step;
+  h.t = ctx_.t;
+  h.newton_iterations = status_.total_iterations;
+  h.cutbacks = status_.total_cutbacks;
+  h.method = pfem_ ? "pfem" : "fem";
+  h.scene_hash = scene_.text_hash;
+  h.linear_solver = solver_.backend();
+  h.last_frame_time = last_frame_time_;
+  h.frames = pvd_.entries();
+  write_checkpoint_header(w, h);
+  w.store("nodes", m_.nodes);
+  w.vector("node_body", m_.node_body);
+  w.value("blocks", Index(m_.cells.size()));
+  for (std::size_t k = 0; k < m_.cells.size(); ++k) {
+    const std::string key = "block/" + std::to_string(k);
+    w.value(key + "/formulation", int(m_.cells[k].formulation));
+    w.store(key + "/cells", m_.cells[k]);
+    w.vector(key + "/by_colour", m_.cells[k].by_colour);
+    w.vector(key + "/colour_offsets", m_.cells[k].colour_offsets);
+    w.store(key + "/quad_points", m_.quad[k]);
+  }
+  if (pfem_)
+    for (std::size_t b = 0; b < topology_.triangles.size(); ++b) w.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
+  store_checkpoint(w, options_, step);
+}
+
+CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
+  const CheckpointHeader h = read_checkpoint_header(r, scene_, options_.log);
+  r.store("nodes", m_.nodes);
+  r.vector("node_body", m_.node_body);
+  const Index blocks = r.value<Index>("blocks");
+  LOOM_CHECK(blocks == Index(m_.cells.size()), InputError,
+             r.path() << ": error: the checkpoint has " << blocks << " cell blocks, the scene " << m_.cells.size()
+                      << ": the scene differs from the one it was written for");
+  for (std::size_t k = 0; k < m_.cells.size(); ++k) {
+    const std::string key = "block/" + std::to_string(k);
+    LOOM_CHECK(r.value<int>(key + "/formulation") == int(m_.cells[k].formulation), InputError,
+               r.path() << ": error: cell block " << k << " has another element formulation than in this scene");
+    r.store(key + "/cells", m_.cells[k]);
+    r.vector(key + "/by_colour", m_.cells[k].by_colour);
+    r.vector(key + "/colour_offsets", m_.cells[k].colour_offsets);
+    r.store(key + "/quad_points", m_.quad[k]);
+  }
+  if (pfem_) {
+    for (std::size_t b = 0; b < topology_.triangles.size(); ++b) {
+      r.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
+      topology_.boundary[b] = boundary_of(topology_.triangles[b]);
+    }
+    rebuild_system(m_, topology_, /*connectivity_changed=*/true);
+    probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
+  }
+  status_.total_iterations = h.newton_iterations;
+  status_.total_cutbacks = h.cutbacks;
+  solver_.use_backend(h.linear_solver);
+  last_frame_time_ = h.last_frame_time;
+  ctx_.step = h.step;
+  ctx_.t = h.t;
+  ctx_.dt = scene_.time.dt;
+  return h;
+}
+
+}  // namespace loom

@@ -1,0 +1,77 @@
+#include "engine/methods/run_output.hpp"
+
+#include <ostream>
+
+#include "engine/core/errors.hpp"
+#include "engine/io/files.hpp"
+#include "engine/io/run_files.hpp"
+
+namespace loom {
+
+void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h) {
+  w.text("run/method", h.method);
+  w.text("run/scene_hash", h.scene_hash);
+  w.value("run/step", h.step);
+  w.value("run/t", h.t);
+  w.value("run/newton_iterations", h.newton_iterations);
+  w.value("run/cutbacks", h.cutbacks);
+  w.text("run/linear_solver", h.linear_solver);
+  w.value("run/last_frame_time", h.last_frame_time);
+  w.value("run/frames", Index(h.frames.size()));
+  for (std::size_t k = 0; k < h.frames.size(); ++k) {
+    const std::string key = "run/frame/" + std::to_string(k);
+    w.value(key + "/time", h.frames[k].time);
+    w.value(key + "/part", h.frames[k].part);
+    w.text(key + "/file", h.frames[k].file);
+  }
+}
+
+CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSpec& scene, std::ostream* log) {
+  CheckpointHeader h;
+  h.method = r.text("run/method");
+  const char* names[] = {"fem", "pfem", "es_pfem", "mpm", "mpm_fem"};
+  const std::string method = names[int(scene.scene.method)];
+  LOOM_CHECK(h.method == method, InputError,
+             r.path() << ": error: the checkpoint is of a method " << h.method << " run; the scene runs method " << method);
+  h.scene_hash = r.text("run/scene_hash");
+  if (h.scene_hash != scene.text_hash && log)
+    *log << r.path() << ": warning: the scene file or its --set overrides differ from those of the run that wrote the checkpoint; "
+         << "continuing with the scene as it is now\n";
+  h.step = r.value<int>("run/step");
+  h.t = r.value<double>("run/t");
+  LOOM_CHECK(h.step >= 0 && h.step < scene.time.steps, InputError,
+             r.path() << ": error: the checkpoint is of step " << h.step << ", and the scene has " << scene.time.steps
+                      << " steps: nothing is left to run (raise time.steps to continue)");
+  h.newton_iterations = r.value<long long>("run/newton_iterations");
+  h.cutbacks = r.value<int>("run/cutbacks");
+  h.linear_solver = r.text("run/linear_solver");
+  h.last_frame_time = r.value<double>("run/last_frame_time");
+  const Index n = r.value<Index>("run/frames");
+  for (Index k = 0; k < n; ++k) {
+    const std::string key = "run/frame/" + std::to_string(k);
+    h.frames.push_back({r.value<double>(key + "/time"), r.text(key + "/file"), r.value<int>(key + "/part")});
+  }
+  return h;
+}
+
+void open_run_output(const SceneSpec& scene, const RunOptions& options, const CheckpointHeader* restart, PvdWriter& pvd,
+                     ProbeWriter& probes) {
+  const std::string& dir = options.output_directory;
+  prepare_output_directory(dir, options.output_origin.empty() ? "output.directory" : options.output_origin);
+  const std::string stem = file_stem(scene.scene.name);
+  remove_frames(dir, stem, restart ? restart->step : -1);
+  if (!restart) remove_checkpoints(dir, -1);
+  pvd = PvdWriter(dir, stem);
+  if (restart) pvd.restore(restart->frames);
+  std::vector<std::string> names;
+  for (const auto& p : scene.probes) names.push_back(p.name);
+  if (restart) probes.reopen(dir + "/probes.csv", names, restart->step);
+  else probes.open(dir + "/probes.csv", names);
+}
+
+void store_checkpoint(const CheckpointWriter& w, const RunOptions& options, int step) {
+  w.write(checkpoint_path(options.output_directory, step));
+  remove_checkpoints(options.output_directory, step);
+}
+
+}  // namespace loom

@@ -1,0 +1,40 @@
+// What the recipes share about a run's files: opening the output (a fresh run, or a restarted one that
+// keeps what its checkpoint had written) and the part of a checkpoint that is not a store -- the step and
+// time, the run's totals, the linear solver in use and the frames of the collection.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/io/checkpoint.hpp"
+#include "engine/io/probe_writer.hpp"
+#include "engine/io/pvd_writer.hpp"
+#include "engine/methods/method.hpp"
+#include "engine/scene/scene_spec.hpp"
+
+namespace loom {
+
+struct CheckpointHeader {
+  int step = 0;
+  double t = 0.0;
+  long long newton_iterations = 0;
+  int cutbacks = 0;
+  std::string method, scene_hash, linear_solver;
+  double last_frame_time = -1.0;
+  std::vector<PvdWriter::Entry> frames;
+};
+
+void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h);
+// Throws InputError if the checkpoint was written by another method; warns on `log` if by another scene text.
+CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSpec& scene, std::ostream* log);
+
+// Opens the run's output directory: a fresh run removes the frames and checkpoints of an earlier run of
+// the scene and starts probes.csv; a restarted run (`restart` not null) keeps the rows and frames up to
+// its checkpoint's step, removes later ones and restores the collection.
+void open_run_output(const SceneSpec& scene, const RunOptions& options, const CheckpointHeader* restart, PvdWriter& pvd,
+                     ProbeWriter& probes);
+
+// Writes the checkpoint of `step` into the output directory and removes the older ones.
+void store_checkpoint(const CheckpointWriter& w, const RunOptions& options, int step);
+
+}  // namespace loom

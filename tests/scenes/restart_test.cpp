@@ -1,0 +1,171 @@
+// Checkpoints and restarts (`[output] checkpoint_every`, `loom run --stop-after N`, `--restart DIR`) and a
+// clean stop on SIGINT. The contract: a run stopped after step N and continued from its checkpoint writes
+// the same probes.csv as the run that never stopped, byte for byte, and the same last frame -- for fem
+// (static and dynamic), for pfem across remeshes that change the connectivity (both before and after the
+// checkpoint), and for mpm (ASGS, and OSGS whose residual projections are carried by the particles).
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "tests/scenes/scene_checks.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace loom::testing {
+namespace {
+
+const std::string kSource = LOOM_SOURCE_DIR;
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& sets) {
+  for (const auto& s : sets) args.push_back("--set"), args.push_back(s);
+  return args;
+}
+
+// Runs the scene whole, then stopped after `stop` and continued; returns the whole run's probes.
+ProbeTable expect_restart_reproduces(const std::string& name, const std::string& scene, const std::vector<std::string>& sets, int stop,
+                                      int steps, const std::string& last_frame) {
+  TempDir dir("restart_" + name);
+  const std::string full = dir.file("full"), part = dir.file("part");
+  const Command a = run_loom(with({"run", scene, "--quiet", "--out", full}, sets));
+  EXPECT_EQ(a.exit_code, 0) << a.err;
+  const Command b = run_loom(with({"run", scene, "--quiet", "--out", part, "--stop-after", std::to_string(stop)}, sets));
+  EXPECT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.err.find("stopped as asked after step " + std::to_string(stop)), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("--restart " + part), std::string::npos) << b.err;
+  const Json stopped = parse_json(read_text(part + "/run.json"));
+  EXPECT_EQ(stopped.at("status").string, "stopped");
+  EXPECT_EQ(stopped.at("last_converged_step").number, double(stop));
+  EXPECT_TRUE(std::filesystem::exists(part + "/checkpoint_" + std::string(6 - std::to_string(stop).size(), '0') + std::to_string(stop) + ".loom"));
+  const Command c = run_loom(with({"run", scene, "--quiet", "--restart", part}, sets));
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  const std::string probes = read_text(full + "/probes.csv");
+  EXPECT_EQ(read_text(part + "/probes.csv"), probes) << name << ": the continued run's probes differ from the whole run's";
+  EXPECT_EQ(read_probes(part + "/probes.csv").rows.size(), std::size_t(steps) + 1);
+  const Json whole = parse_json(read_text(full + "/run.json")), continued = parse_json(read_text(part + "/run.json"));
+  EXPECT_EQ(continued.at("status").string, "completed");
+  EXPECT_EQ(continued.at("restarted_from_step").number, double(stop));
+  EXPECT_EQ(continued.at("steps_done").number, double(steps));
+  EXPECT_EQ(continued.at("newton_iterations").number, whole.at("newton_iterations").number);
+  EXPECT_EQ(read_text(part + "/" + last_frame), read_text(full + "/" + last_frame)) << last_frame;
+  EXPECT_FALSE(read_text(part + "/" + last_frame).empty()) << last_frame;
+  for (const auto& f : files_under(part)) EXPECT_EQ(f.find(".tmp"), std::string::npos) << f;
+  return read_probes(full + "/probes.csv");
+}
+
+TEST(Restart, FemStaticContinuesBitForBit) {
+  expect_restart_reproduces("fem", kSource + "/scenes/constrained_block_fem.toml",
+                            {"output.every=20", "output.checkpoint_every=25"}, 57, 200, "constrained-block-fem_000200.vtu");
+}
+
+TEST(Restart, FemDynamicContinuesBitForBit) {
+  expect_restart_reproduces("fem_dynamic", kSource + "/tests/stress/scenes/cantilever_release.toml",
+                            {"time.steps=60", "output.every=30"}, 23, 60, "cantilever-release_000060.vtu");
+}
+
+// The moderately constrained block first changes its connectivity at step 138 and then 118 more times up
+// to step 220: the checkpoint of step 150 holds a remeshed mesh (not the generated one), and the continued
+// run remeshes it on, with TRI6 mid-nodes re-created at every remesh.
+TEST(Restart, PfemContinuesBitForBitAcrossConnectivityChanges) {
+  for (const char* element : {"p1p1_uphi", "tri6"}) {
+    SCOPED_TRACE(element);
+    const ProbeTable table = expect_restart_reproduces(
+        std::string("pfem_") + element, kSource + "/scenes/moderate_block_pfem.toml",
+        {"time.steps=200", "output.every=50", std::string("body[0].element=\"") + element + "\""}, 150, 200, "moderate-block-pfem_000200.vtu");
+    const auto changed = table.column("changed");
+    int before = 0, after = 0;
+    for (std::size_t s = 1; s < changed.size(); ++s) (s <= 150 ? before : after) += changed[s] == 1.0;
+    EXPECT_GT(before, 0);
+    EXPECT_GT(after, 0);
+  }
+}
+
+TEST(Restart, MpmContinuesBitForBit) {
+  expect_restart_reproduces("mpm", kSource + "/scenes/cooks_membrane_mpm_dynamic.toml",
+                            {"time.steps=16", "output.every=8", "body[0].particles_per_cell=3"}, 7, 16,
+                            "cooks-membrane-mpm-dynamic_000016_particles.vtp");
+  expect_restart_reproduces("mpm_osgs", kSource + "/scenes/cooks_membrane_mpm_dynamic.toml",
+                            {"time.steps=8", "output.every=4", "body[0].particles_per_cell=3", "body[0].stabilisation=\"osgs\""}, 3, 8,
+                            "cooks-membrane-mpm-dynamic_000008_grid.vtu");
+}
+
+// SIGINT stops the run after the step in progress: exit 130, run.json says "interrupted" with the last
+// completed step, timings.json is written, no temporary file is left, and the checkpoint it writes
+// continues to the very probes of an uninterrupted run. Where the signal lands does not matter.
+TEST(Restart, SigintStopsCleanlyAndTheRunContinuesBitForBit) {
+  TempDir dir("restart_sigint");
+  const std::string scene = kSource + "/scenes/moderate_block_pfem.toml";
+  const std::vector<std::string> sets = {"time.steps=400", "output.every=20", "output.checkpoint_every=50"};
+  const std::string out = dir.file("run");
+  std::vector<std::string> args = with({LOOM_BINARY, "run", scene, "--quiet", "--out", out}, sets);
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    freopen((out + ".err").c_str(), "w", stderr);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(LOOM_BINARY, argv.data());
+    _exit(127);
+  }
+  // Interrupt once the first periodic checkpoint exists (the run is then past step 50 of 400).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!std::filesystem::exists(out + "/checkpoint_000050.loom") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal instead of stopping cleanly";
+  const std::string err = read_text(out + ".err");
+  ASSERT_EQ(WEXITSTATUS(status), 130) << err;
+  EXPECT_NE(err.find("interrupted by SIGINT after step "), std::string::npos) << err;
+  const Json run = parse_json(read_text(out + "/run.json"));
+  EXPECT_EQ(run.at("status").string, "interrupted");
+  EXPECT_EQ(run.at("interrupted_by").string, "SIGINT");
+  const int last = int(run.at("last_converged_step").number);
+  EXPECT_GE(last, 50);
+  EXPECT_LT(last, 400);
+  EXPECT_EQ(read_probes(out + "/probes.csv").rows.size(), std::size_t(last) + 1);
+  EXPECT_NO_THROW(parse_json(read_text(out + "/timings.json")));
+  for (const auto& f : files_under(out)) EXPECT_EQ(f.find(".tmp"), std::string::npos) << f;
+  const std::string checkpoint = out + "/checkpoint_" + std::string(6 - std::to_string(last).size(), '0') + std::to_string(last) + ".loom";
+  EXPECT_TRUE(std::filesystem::exists(checkpoint)) << "an interrupted run with checkpoints enabled writes one of its last step";
+  const Command c = run_loom(with({"run", scene, "--quiet", "--restart", out}, sets));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const Command whole = run_loom(with({"run", scene, "--quiet", "--out", dir.file("whole")}, sets));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(read_text(out + "/probes.csv"), read_text(dir.file("whole") + "/probes.csv"));
+  EXPECT_EQ(parse_pvd(read_text(out + "/moderate-block-pfem.pvd")).size(), parse_pvd(read_text(dir.file("whole") + "/moderate-block-pfem.pvd")).size());
+}
+
+TEST(Restart, BadRestartsAreBadInput) {
+  TempDir dir("restart_bad");
+  const std::string scene = kSource + "/scenes/constrained_block_fem.toml";
+  const Command none = run_loom({"run", scene, "--quiet", "--restart", dir.path()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("no checkpoint in this directory"), std::string::npos) << none.err;
+  const Command stop = run_loom({"run", scene, "--quiet", "--out", dir.path(), "--stop-after", "10"});
+  ASSERT_EQ(stop.exit_code, 0) << stop.err;
+  const std::string checkpoint = dir.file("checkpoint_000010.loom");
+  // Another method's scene.
+  const Command other = run_loom({"run", kSource + "/scenes/constrained_block_pfem.toml", "--quiet", "--restart", dir.path()});
+  EXPECT_EQ(other.exit_code, 2) << other.err;
+  EXPECT_NE(other.err.find("the checkpoint is of a method fem run; the scene runs method pfem"), std::string::npos) << other.err;
+  // --out elsewhere.
+  const Command out = run_loom({"run", scene, "--quiet", "--restart", dir.path(), "--out", dir.file("elsewhere")});
+  EXPECT_EQ(out.exit_code, 2) << out.err;
+  // A truncated file.
+  std::string bytes = read_text(checkpoint);
+  write_text(checkpoint, bytes.substr(0, bytes.size() / 2));
+  const Command cut = run_loom({"run", scene, "--quiet", "--restart", checkpoint});
+  EXPECT_EQ(cut.exit_code, 2) << cut.err;
+  EXPECT_NE(cut.err.find("truncated or corrupt"), std::string::npos) << cut.err;
+  for (const Command* c : {&none, &other, &out, &cut}) EXPECT_FALSE(looks_like_crash(c->err)) << c->err;
+}
+
+}  // namespace
+}  // namespace loom::testing
