@@ -58,7 +58,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
       ScopedTimer t(timers, "newton/solve");
       solved = p.solve();
     }
-    if (!solved) return fail("the tangent matrix is singular");
+    if (!solved) return fail(p.solve_failure());
     report.iterations = it;
     double step = 1.0;
     {

@@ -34,6 +34,8 @@ class NonlinearProblem {
   virtual double residual_norm() const = 0;
   // Solves tangent * du = -residual; false if the tangent is singular.
   virtual bool solve() = 0;
+  // Why solve() returned false, for the failure message.
+  virtual std::string solve_failure() const { return "the tangent matrix is singular"; }
   // iterate += step * du
   virtual void update(double step) = 0;
   virtual double increment_norm() const = 0;   // |du| on the free dofs

@@ -3,10 +3,24 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 
 namespace loom {
 namespace {
+
+// Eigen keeps the factor and UMFPACK's report protected: these expose the condition estimates.
+class CholmodLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  // (min diag L / max diag L)^2: CHOLMOD's own cheap estimate of 1 / cond(A).
+  double rcond() { return this->m_cholmodFactor ? cholmod_rcond(this->m_cholmodFactor, &this->cholmod()) : 0.0; }
+};
+class UmfpackLU : public Eigen::UmfPackLU<SparseMatrix> {
+ public:
+  // min |U_ii| / max |U_ii| of the scaled factorization (UMFPACK's Info[UMFPACK_RCOND]).
+  double rcond() const { return this->m_umfpackInfo(UMFPACK_RCOND); }
+};
 
 class CholmodSolver final : public LinearSolver {
  public:
@@ -21,9 +35,10 @@ class CholmodSolver final : public LinearSolver {
     x = solver_.solve(b);
     return solver_.info() == Eigen::Success;
   }
+  double rcond() override { return solver_.rcond(); }
 
  private:
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> solver_;
+  CholmodLLT solver_;
 };
 
 class UmfpackSolver final : public LinearSolver {
@@ -41,9 +56,10 @@ class UmfpackSolver final : public LinearSolver {
     x = solver_.solve(b);
     return solver_.info() == Eigen::Success;
   }
+  double rcond() override { return solver_.rcond(); }
 
  private:
-  Eigen::UmfPackLU<SparseMatrix> solver_;
+  UmfpackLU solver_;
 };
 
 }  // namespace
@@ -65,8 +81,19 @@ bool LinearSolve::factorize(const SparsePattern& pattern) {
       ++analyses_;
     }
     ++factorizations_;
-    if (solver_->factorize(pattern.matrix)) return true;
-    if (kind_ != LinearSolverKind::automatic || std::string(solver_->name()) == "umfpack") return false;
+    if (solver_->factorize(pattern.matrix)) {
+      const double rcond = solver_->rcond();
+      min_rcond_ = std::min(min_rcond_, std::isfinite(rcond) ? rcond : 0.0);
+      return true;
+    }
+    if (kind_ != LinearSolverKind::automatic || std::string(solver_->name()) == "umfpack") {
+      min_rcond_ = 0.0;
+      failure_ = std::string(solver_->name()) == "umfpack"
+                     ? "the tangent matrix is singular (UMFPACK met a zero pivot)"
+                     : "the tangent matrix is not positive definite, or singular (CHOLMOD; solver.linear = \"auto\" or \"umfpack\" "
+                       "take indefinite matrices)";
+      return false;
+    }
     // Not positive definite: the tangent is indefinite (instability, or a formulation without SPD
     // tangent); LU handles it from now on.
     solver_ = make_umfpack_solver();

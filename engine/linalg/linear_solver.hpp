@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -20,6 +21,8 @@ class LinearSolver {
   virtual void analyze(const SparseMatrix& A) = 0;      // symbolic
   virtual bool factorize(const SparseMatrix& A) = 0;    // numeric; false: singular / not SPD
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  // The back-end's estimate of 1 / cond(A) from its pivots, after a successful factorize.
+  virtual double rcond() = 0;
 };
 
 std::unique_ptr<LinearSolver> make_cholmod_solver();  // supernodal LL^T, SPD only
@@ -40,12 +43,22 @@ class LinearSolve {
   // matrix was not positive definite), so that it factorizes as that run would have.
   void use_backend(const std::string& name);
   int analyses() const { return analyses_; }
+  // Why the last factorize returned false.
+  const std::string& failure() const { return failure_; }
+  // The smallest pivot-based estimate of 1 / cond since reset_condition() (0 after a singular matrix).
+  // Below kNearlySingular the matrix is singular up to round-off: a solution exists only by accident of
+  // the rounding, and any component in its near-null space is arbitrary.
+  static constexpr double kNearlySingular = 1e-13;
+  double min_rcond() const { return min_rcond_; }
+  void reset_condition() { min_rcond_ = INFINITY; }
   int factorizations() const { return factorizations_; }
 
  private:
   LinearSolverKind kind_;
   std::unique_ptr<LinearSolver> solver_;
   std::uint64_t analysed_version_ = 0;
+  double min_rcond_ = INFINITY;
+  std::string failure_;
   int analyses_ = 0, factorizations_ = 0;
 };
 

@@ -12,6 +12,7 @@
 #include "engine/drivers/time_loop.hpp"
 #include "engine/io/files.hpp"
 #include "engine/io/vtk_writer.hpp"
+#include "engine/methods/conditioning_note.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/methods/model_checks.hpp"
 #include "engine/methods/run_output.hpp"
@@ -112,12 +113,14 @@ void FemRun::newton_node() {
     *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
     settings.log = options_.log;
   }
+  solver_.reset_condition();
   const NewtonReport report = solve_newton(problem, settings, timers_);
   status_.converged = report.converged;
   status_.iterations = report.iterations;
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
+  note_conditioning(solver_, ctx_, status_, options_.log, warned_singular_);
   // A cell the alpha shape has just added (or removed) changes a nearly incompressible body at once: say so,
   // it is the usual reason why a PFEM step fails where the previous ones converged.
   if (!report.converged && pfem_ && last_change_step_ == ctx_.step) {

@@ -91,6 +91,7 @@ class FemRun final : public MethodRun {
   std::unique_ptr<StepGraph> graph_;
   double wall_ = 0.0;
   double last_frame_time_ = -1.0;
+  bool warned_singular_ = false;
 };
 
 }  // namespace loom

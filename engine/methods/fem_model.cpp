@@ -5,6 +5,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_mesh.hpp"
+#include "engine/methods/memory_estimate.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/update/lumped_mass.hpp"
 
@@ -29,6 +30,7 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
 }  // namespace
 
 FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
+  check_memory(scene);
   // 1. Columns: dynamic integrators need velocities and accelerations, lumped mass its column, mixed
   //    elements the dilatation.
   const bool dynamic = scene.time.integrator == Integrator::euler_backward;

@@ -43,6 +43,7 @@ class FemNewtonProblem final : public NonlinearProblem {
   }
   double residual_norm() const override { return system_.residual.norm(); }
   bool solve() override { return solve_linear_step(nodes_, bc_, solver_, system_, timers_) == LinearSolveStatus::ok; }
+  std::string solve_failure() const override { return solver_.failure().empty() ? "the tangent matrix is singular" : solver_.failure(); }
   void update(double step) override { update_iterate(step, system_, nodes_); }
   double increment_norm() const override { return system_.increment.norm(); }
   double step_change_norm() const override {

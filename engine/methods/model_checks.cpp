@@ -57,8 +57,10 @@ void check_rigid_motions_held(const SceneSpec& scene, const Nodes<2>& nodes, con
     for (std::size_t k : ks) ++held_nodes[k];
   }
   std::ostringstream os;
-  os << spec.where << ": error: body[" << body << "]: the run is static (no inertia), and body \"" << spec.name << "\" "
-     << (free.size() > 1 || f.nodes.size() < std::size_t(nodes.size()) ? "(a connected piece of it) " : "") << f.describe();
+  os << spec.where << ": error: body[" << body << "]: the run is static (no inertia), and ";
+  if (active) os << "the active grid under body \"" << spec.name << "\" ";
+  else os << "body \"" << spec.name << "\" " << (free.size() > 1 || f.nodes.size() < std::size_t(nodes.size()) ? "(a connected piece of it) " : "");
+  os << f.describe();
   if (!held_nodes.empty()) {
     os << "; it is held only by";
     bool first = true;

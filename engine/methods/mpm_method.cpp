@@ -13,6 +13,7 @@
 #include "engine/io/vtk_writer.hpp"
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
+#include "engine/methods/conditioning_note.hpp"
 #include "engine/methods/model_checks.hpp"
 #include "engine/methods/mpm_newton_problem.hpp"
 #include "engine/methods/run_output.hpp"
@@ -97,22 +98,28 @@ void MpmRun::newton_node() {
     *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
     settings.log = options_.log;
   }
+  solver_.reset_condition();
   const NewtonReport report = solve_newton(problem, settings, timers_);
   status_.converged = report.converged;
   status_.iterations = report.iterations;
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
-  if (!report.converged && m_.grid.stride == 4) {  // the likely cause on bilinear cells: too few particles in some
+  // The likely cause of a failure or of a singular tangent on bilinear cells: too few particles in some.
+  std::string hint;
+  const bool suspect = !report.converged || solver_.min_rcond() < LinearSolve::kNearlySingular;
+  if (suspect && m_.grid.stride == 4) {
     Index sparse = 0;
     for (Index c : m_.activity.active_cells) sparse += m_.particle_loc.count_in(c) < 4;
     if (sparse > 0) {
       std::ostringstream os;
-      os << "; " << sparse << " of the " << m_.activity.active_cells.size() << " active quad4 cells hold fewer than 4 particles "
+      os << sparse << " of the " << m_.activity.active_cells.size() << " active quad4 cells hold fewer than 4 particles "
          << "(a bilinear cell with fewer has hourglass modes: raise body[0].particles_per_cell, refine the body mesh or coarsen the grid)";
-      status_.failure += os.str();
+      hint = os.str();
     }
   }
+  note_conditioning(solver_, ctx_, status_, options_.log, warned_singular_, hint);
+  if (!report.converged && !hint.empty()) status_.failure += "; " + hint;
 }
 
 void MpmRun::probes_node() {

@@ -70,6 +70,7 @@ class MpmRun final : public MethodRun {
   AsyncWriter writer_;
   std::unique_ptr<StepGraph> graph_;
   double last_frame_time_ = -1.0;
+  bool warned_singular_ = false;
 };
 
 }  // namespace loom

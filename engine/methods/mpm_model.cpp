@@ -9,6 +9,7 @@
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_particles.hpp"
+#include "engine/methods/memory_estimate.hpp"
 #include "systems/locate/activate_grid.hpp"
 #include "systems/locate/locate_points.hpp"
 
@@ -85,6 +86,7 @@ RectangleSpec rectangle_of(const MeshSpec& m) {
 }  // namespace
 
 MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
+  check_memory(scene);
   const BodySpec& body = scene.bodies.at(0);
   dynamic = scene.time.integrator == Integrator::newmark;
   mixed = body.element == Formulation::p1p1_up;

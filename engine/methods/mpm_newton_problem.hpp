@@ -41,6 +41,7 @@ class MpmNewtonProblem final : public NonlinearProblem {
     if (m_.osgs) mix_increment();
     return true;
   }
+  std::string solve_failure() const override { return solver_.failure().empty() ? "the tangent matrix is singular" : solver_.failure(); }
   void update(double step) override {
     applied_ += step;
     update_grid_iterate(ctx_, step, m_.system, m_.grid_nodes);

@@ -116,3 +116,35 @@ TEST(LinearSolve, KeepsTheSymbolicAnalysisWhileThePatternIsUnchanged) {
 }
 
 }  // namespace loom
+
+namespace loom {
+namespace {
+
+// A singular matrix: UMFPACK reports it (zero pivot) and says so; CHOLMOD cannot factorize it either.
+TEST(LinearSolve, ASingularMatrixFailsWithAMessageThatSaysSo) {
+  const SparsePattern p = tridiagonal(6, [](int i) { return i == 0 || i == 5 ? 1.0 : 2.0; }, 1);  // Laplacian, free ends: null space 1
+  LinearSolve u(LinearSolverKind::umfpack);
+  EXPECT_FALSE(u.factorize(p));
+  EXPECT_NE(u.failure().find("singular"), std::string::npos) << u.failure();
+  EXPECT_EQ(u.min_rcond(), 0.0);
+  LinearSolve c(LinearSolverKind::cholmod);
+  EXPECT_FALSE(c.factorize(p));
+  EXPECT_NE(c.failure().find("not positive definite, or singular"), std::string::npos) << c.failure();
+}
+
+// Singular up to round-off (the free-ends Laplacian plus 1e-14 on the diagonal: its smallest eigenvalue): the factorization goes
+// through, and the pivot ratio says what it is; a regular matrix's ratio is far above the threshold.
+TEST(LinearSolve, ThePivotRatioTellsANearlySingularMatrixFromARegularOne) {
+  for (auto kind : {LinearSolverKind::umfpack, LinearSolverKind::cholmod}) {
+    LinearSolve s(kind);
+    s.reset_condition();
+    ASSERT_TRUE(s.factorize(tridiagonal(6, [](int i) { return (i == 0 || i == 5 ? 1.0 : 2.0) + 1e-14; }, 1))) << s.backend();
+    EXPECT_LT(s.min_rcond(), LinearSolve::kNearlySingular) << s.backend();
+    s.reset_condition();
+    ASSERT_TRUE(s.factorize(spd(2)));
+    EXPECT_GT(s.min_rcond(), 0.1) << s.backend();  // eigenvalues in (1, 5)
+  }
+}
+
+}  // namespace
+}  // namespace loom

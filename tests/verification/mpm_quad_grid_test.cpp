@@ -84,22 +84,21 @@ TEST(MpmQuadGrid, StaticCooksMembraneOnANonConformingQuadGridConvergesTowardTheR
   EXPECT_NEAR(u64, tri64, 0.01 * tri64);
 }
 
-// Too few particles per quad4 cell: 960 particles on the h = 0.1 grid (0.7 per cell) leave hourglass modes.
-// The run fails within a few steps, and the failure says which cells are the likely cause and what to change.
-// How Newton gives up on this ill-posed problem is not asserted: the tangent is singular up to round-off, so
-// whether the factorization reports it ("singular", steps 2-3) or an iterate inverts a cell first ("a cell
-// inverted") depends on the BLAS kernels the CPU picks (OPENBLAS_CORETYPE=SkylakeX or Sandybridge take the
-// second path; tools/portability_check.sh).
-TEST(MpmQuadGrid, SparseQuadCellsFailAndTheFailureNamesThemAndTheFix) {
-  const Outcome sparse = run_dynamic({"grid.cells=\"quad4\"", "body[0].mesh.divisions=[16,10]", "body[0].particles_per_cell=3"});
-  ASSERT_FALSE(sparse.summary.converged);
-  EXPECT_LE(sparse.summary.last_converged_step, 5) << sparse.summary.failure;
-  EXPECT_NE(sparse.summary.failure.find("hold fewer than 4 particles"), std::string::npos) << sparse.summary.failure;
-  EXPECT_NE(sparse.summary.failure.find("particles_per_cell"), std::string::npos) << sparse.summary.failure;
-  // The triangle grid gets much further (it stops near step 17, when a traction point finds no active cell
-  // next to it: 0.7 particles per cell are too few for any grid, but the tangent stays regular).
-  const Outcome tri = run_dynamic({"body[0].mesh.divisions=[16,10]", "body[0].particles_per_cell=3"});
-  EXPECT_GE(tri.summary.last_converged_step, sparse.summary.last_converged_step + 10) << tri.summary.failure;
+// Too few particles per quad4 cell: 960 particles on the h = 0.1 grid (0.7 per cell) leave hourglass modes, and
+// the tangent is singular up to round-off from the first step. What such a run then does is decided by
+// round-off, so by the CPU's BLAS kernels (tools/portability_check.sh): with OpenBLAS's Prescott, Nehalem,
+// Haswell and Zen kernels UMFPACK meets a zero pivot at step 3; with SkylakeX an iterate inverts a cell at
+// step 2; with Sandybridge the factorization goes through and the run goes on, wrongly, until a traction
+// point leaves the active grid at step 22. What holds on every machine, and is asserted: loom says that the
+// tangent is singular, names the sparse cells and says what to change -- in the failure or in a warning.
+TEST(MpmQuadGrid, SparseQuadCellsGetTheirSingularTangentNamedWithTheFix) {
+  const testing::Command c = testing::run_loom({"run", verification::scene_path("cooks_membrane_mpm_dynamic.toml"), "--quiet", "--set", "time.steps=" + std::to_string(kSteps),
+                              "--set", "output.every=0", "--set", "grid.cells=\"quad4\"", "--set", "body[0].mesh.divisions=[16,10]", "--set",
+                              "body[0].particles_per_cell=3", "--out", testing::TempDir("mpm_quad_sparse").path()});
+  EXPECT_TRUE(c.exit_code == 0 || c.exit_code == 1) << c.err;
+  EXPECT_NE(c.err.find("singular"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("active quad4 cells hold fewer than 4 particles"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("raise body[0].particles_per_cell"), std::string::npos) << c.err;
 }
 
 }  // namespace
