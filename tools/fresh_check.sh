@@ -12,6 +12,7 @@
 #     --keep     keep the root afterwards for inspection (unmounted; `chroot ROOT bash` to look around)
 #     --jobs N   LOOM_JOBS=N for the build and ctest in the root (default: setup.sh's, all cores)
 #     --refresh  debootstrap again instead of reusing the cached pristine root
+#     --env N=V  add N=V to the commands' environment (a diagnosis, e.g. OPENBLAS_CORETYPE=Haswell)
 # Environment: LOOM_FRESH_CACHE (default /var/tmp/loom-fresh: the pristine root tarball, the runs' roots and
 #   logs/), LOOM_FRESH_MIRROR (default http://deb.debian.org/debian).
 #
@@ -23,14 +24,16 @@
 # installed with apt if missing).
 set -euo pipefail
 
-usage() { sed -n '9,17p' "$0" | sed 's/^# \{0,1\}//'; }
-keep=0 jobs="" refresh=0 ref=HEAD
+usage() { sed -n '9,18p' "$0" | sed 's/^# \{0,1\}//'; }
+keep=0 jobs="" refresh=0 ref=HEAD extra_env=()
 while [ $# -gt 0 ]; do
   case $1 in
     --keep) keep=1 ;;
     --jobs) [ $# -ge 2 ] || { echo "fresh_check: --jobs needs a number" >&2; exit 2; }; jobs=$2; shift ;;
     --jobs=*) jobs=${1#--jobs=} ;;
     --refresh) refresh=1 ;;
+    --env) if [ $# -lt 2 ] || [[ $2 != [A-Za-z_]*=* ]]; then echo "fresh_check: --env wants NAME=VALUE" >&2; exit 2; fi
+           extra_env+=("$2"); shift ;;
     -h|--help) usage; exit 0 ;;
     -*) echo "fresh_check: unknown option $1" >&2; usage >&2; exit 2 ;;
     *) ref=$1 ;;
@@ -62,10 +65,16 @@ log=$cache/logs/$(basename "$work").log
 exec > >(trap '' INT TERM; exec tee -a "$log") 2>&1
 tee_pid=$!
 
-mounts=()
+mounts=() child=""
 cleanup() {
   local rc=$? i
   trap - EXIT INT TERM
+  if [ -n "$child" ] && kill -0 "$child" 2>/dev/null; then  # interrupted: stop the command's whole group first
+    kill -TERM -- "-$child" 2>/dev/null
+    for i in $(seq 20); do kill -0 "$child" 2>/dev/null || break; sleep 0.5; done
+    kill -KILL -- "-$child" 2>/dev/null || true
+    wait "$child" 2>/dev/null || true
+  fi
   for ((i = ${#mounts[@]} - 1; i >= 0; i--)); do
     umount "${mounts[i]}" 2>/dev/null || umount -l "${mounts[i]}" || echo "fresh_check: could not unmount ${mounts[i]}"
   done
@@ -144,13 +153,16 @@ mnt "$root/etc/resolv.conf" --bind "$(readlink -f /etc/resolv.conf)"
 # 3. The README's commands, as root in the root's copy of the repository, with a login's plain environment.
 env_in=(HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin TERM=dumb)
 [ -n "$jobs" ] && env_in+=(LOOM_JOBS="$jobs")
+env_in+=("${extra_env[@]}")
 names=("setup+build+default scene" "tests")
 for i in 0 1; do
   phase "command $((i + 1)): ${cmds[i]}"
-  set +e
-  env -i "${env_in[@]}" chroot "$root" /bin/bash -c "cd /root/loom && ${cmds[i]}"
-  rc=$?
-  set -e
+  # In a process group of its own, waited for in the background, so that Ctrl-C or a TERM reaches the
+  # clean-up at once, which stops the group before it unmounts.
+  setsid env -i "${env_in[@]}" chroot "$root" /bin/bash -c "cd /root/loom && ${cmds[i]}" < /dev/null &
+  child=$!
+  rc=0; wait "$child" || rc=$?
+  child=""
   took "${names[i]}"
   if [ $rc -ne 0 ]; then
     echo
