@@ -7,7 +7,7 @@
 # has; this check does not.
 #
 # Usage (as root, from anywhere in the repository):
-#   tools/fresh_check.sh [--keep] [--jobs N] [--refresh] [REF]
+#   tools/fresh_check.sh [--keep] [--jobs N] [--refresh] [--env N=V]... [REF]
 #     REF        commit, branch or tag to check (default HEAD); uncommitted changes are not seen
 #     --keep     keep the root afterwards for inspection (unmounted; `chroot ROOT bash` to look around)
 #     --jobs N   LOOM_JOBS=N for the build and ctest in the root (default: setup.sh's, all cores)
@@ -18,10 +18,9 @@
 #
 # Each phase is printed with its duration; the whole log is kept in $LOOM_FRESH_CACHE/logs/. Exits 0 when both
 # commands pass, otherwise non-zero and names the command that failed.
-# How long: debootstrap 2-5 minutes on the first run only (later runs unpack the cached tarball in seconds);
-# the first command installs ~1 GB of packages and builds loom (15-25 minutes on two cores), the tests take
-# a few minutes. Needs ~6 GB of disk in $LOOM_FRESH_CACHE per root. Uses only Debian packages (debootstrap,
-# installed with apt if missing).
+# How long (two cores): debootstrap 1-2 minutes, on the first run only (later runs unpack the cached tarball
+# in seconds); the first command, apt installs and the build, 11-16 minutes; the tests about a minute.
+# Uses only Debian packages (debootstrap, installed with apt if missing).
 set -euo pipefail
 
 usage() { sed -n '9,18p' "$0" | sed 's/^# \{0,1\}//'; }
@@ -76,8 +75,9 @@ cleanup() {
     wait "$child" 2>/dev/null || true
   fi
   for ((i = ${#mounts[@]} - 1; i >= 0; i--)); do
-    umount "${mounts[i]}" 2>/dev/null || umount -l "${mounts[i]}" || echo "fresh_check: could not unmount ${mounts[i]}"
+    umount -R "${mounts[i]}" 2>/dev/null || umount -R -l "${mounts[i]}" || echo "fresh_check: could not unmount ${mounts[i]}"
   done
+  [ ${#timings[@]} -gt 0 ] && summary
   if awk -v r="$root" '$5 == r || index($5, r "/") == 1 { f = 1 } END { exit !f }' /proc/self/mountinfo; then
     echo "fresh_check: something is still mounted under $root; not removing it"
   elif [ "$keep" = 1 ]; then
@@ -99,6 +99,15 @@ phase_t0=0
 phase() { phase_t0=$(date +%s); echo; echo "=== fresh_check: $1 ($(date '+%H:%M:%S'))"; }
 took() { local d=$(($(date +%s) - phase_t0)); printf '=== fresh_check: %s took %dm%02ds\n' "$1" $((d / 60)) $((d % 60)); timings+=("$(printf '%-40s %3dm%02ds' "$1" $((d / 60)) $((d % 60)))"); }
 timings=()
+summary() { # the phases' durations and ctest's count
+  local d=$(($(date +%s) - t_start)) tests
+  echo
+  echo "fresh_check: timings"
+  printf '  %s\n' "${timings[@]}"
+  printf '  %-40s %3dm%02ds\n' "total" $((d / 60)) $((d % 60))
+  tests=$(grep -aE '^[0-9]+% tests passed' "$log" | tail -1) && echo "fresh_check: ctest: $tests"
+  timings=()
+}
 
 echo "fresh_check: $short ($(git -C "$repo" log -1 --format=%s "$commit" | cut -c1-80)) in a fresh Debian 12 minbase root"
 echo "fresh_check: root $root, log $log"
@@ -137,7 +146,7 @@ mnt() { # mnt TARGET MOUNT-ARGS...: mount and remember, private so nothing propa
   local target=$1; shift
   mount "$@" "$target" || return 1
   mounts+=("$target")
-  mount --make-private "$target"
+  mount --make-rprivate "$target"
 }
 mnt "$root/proc" -t proc proc
 mnt "$root/sys" -t sysfs sysfs 2>/dev/null || mnt "$root/sys" --rbind /sys
@@ -165,15 +174,11 @@ for i in 0 1; do
   child=""
   took "${names[i]}"
   if [ $rc -ne 0 ]; then
-    echo
+    summary
     echo "fresh_check: FAILED: README command $((i + 1)) \`${cmds[i]}\` exited $rc on a fresh Debian 12 root ($short)"
     exit 1
   fi
 done
 
-echo
-echo "fresh_check: timings"
-printf '  %s\n' "${timings[@]}"
-d=$(($(date +%s) - t_start))
-printf '  %-40s %3dm%02ds\n' "total" $((d / 60)) $((d % 60))
+summary
 echo "fresh_check: PASSED: both README commands on a fresh Debian 12 root ($short)"
