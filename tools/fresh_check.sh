@@ -24,7 +24,7 @@
 set -euo pipefail
 
 usage() { sed -n '9,18p' "$0" | sed 's/^# \{0,1\}//'; }
-keep=0 jobs="" refresh=0 ref=HEAD extra_env=()
+keep=0 jobs="" refresh=0 ref=HEAD extra_env=() args=("$@")
 while [ $# -gt 0 ]; do
   case $1 in
     --keep) keep=1 ;;
@@ -43,7 +43,7 @@ if [ -n "$jobs" ] && ! [[ $jobs =~ ^[1-9][0-9]*$ ]]; then
   echo "fresh_check: --jobs wants a positive number, not '$jobs'" >&2; exit 2
 fi
 if [ "$(id -u)" -ne 0 ]; then
-  echo "fresh_check: needs root (debootstrap, chroot and mounts): run it as 'sudo $0 $*'" >&2
+  echo "fresh_check: needs root (debootstrap, chroot and mounts): run it as 'sudo $0 ${args[*]}'" >&2
   exit 2
 fi
 
