@@ -20,7 +20,8 @@
 # commands pass, otherwise non-zero and names the command that failed.
 # How long (two cores): debootstrap 1-2 minutes, on the first run only (later runs unpack the cached tarball
 # in seconds); the first command, apt installs and the build, 11-16 minutes; the tests about a minute.
-# Uses only Debian packages (debootstrap, installed with apt if missing).
+# Disk: ~4 GB per root (removed afterwards unless --keep), 164 MB for the cached tarball. Uses only Debian
+# packages (debootstrap, installed with apt if missing).
 set -euo pipefail
 
 usage() { sed -n '9,18p' "$0" | sed 's/^# \{0,1\}//'; }
