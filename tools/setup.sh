@@ -5,11 +5,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # xvfb: tools/render draws off-screen through an X server of its own (Debian's VTK 9.1 renders through X).
+# Packages are installed without their Recommends, so every recommended package that a test uses is listed:
+# xauth (xvfb-run needs it; only recommended by xvfb).
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libtbb-dev libcgal-dev libsuitesparse-dev libopenblas0-pthread
   libvtk9-dev libbenchmark-dev libgtest-dev libgmock-dev libtomlplusplus-dev libmuparser-dev
-  python3 python3-numpy python3-matplotlib python3-vtk9 xvfb
+  python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
 )
 
 missing=()
