@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libtbb-dev libcgal-dev libsuitesparse-dev libopenblas0-pthread
-  libvtk9-dev libbenchmark-dev libgtest-dev libgmock-dev libtomlplusplus-dev libmuparser-dev
+  libvtk9-dev libbenchmark-dev libgtest-dev libgmock-dev libtomlplusplus-dev libmuparser-dev libgmsh-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
 )
 

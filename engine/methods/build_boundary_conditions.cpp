@@ -27,7 +27,7 @@ std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, co
 
 BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
-                                                int dofs_per_node, bool tie_mid_nodes,
+                                                const BodyRegions& regions, int dofs_per_node, bool tie_mid_nodes,
                                                 const std::vector<TractionEdge<2>>* frozen_tractions) {
   BoundaryConditions<2> bc;
   bc.per_node = dofs_per_node;
@@ -49,13 +49,43 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     for (const auto& e : boundary_edges(cb.nodes.values(), cb.stride))
       edges.push_back({e.a, e.b, cb.stride == 6 ? cb.node(e.cell, 3 + e.side) : kNoIndex});
 
-  auto inside_box = [&](const BoundarySpec& spec, Index i) {
+  // The nodes each region selects: in the box, or in the group (mid-nodes: both corners of their edge).
+  std::vector<std::pair<Index, Index>> mid_corners(std::size_t(nodes.size()), {kNoIndex, kNoIndex});
+  for (const Cells& cb : cells)
+    if (cb.stride == 6)
+      for (Index c = 0; c < cb.size(); ++c)
+        for (int s = 0; s < 3; ++s) mid_corners[std::size_t(cb.node(c, 3 + s))] = {cb.node(c, s), cb.node(c, (s + 1) % 3)};
+  std::vector<std::vector<char>> member(scene.boundaries.size(), std::vector<char>(std::size_t(nodes.size()), 0));
+  for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
+    const BoundarySpec& spec = scene.boundaries[k];
     const auto body = std::size_t(spec.body);
-    const double tol = 1e-9 * std::max(1.0, (hi[body] - lo[body]).norm());
-    const Vec2& X = nodes.X[i];
-    return node_body[std::size_t(i)] == spec.body && X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol &&
-           X.y() >= spec.box_min.y() - tol && X.y() <= spec.box_max.y() + tol;
-  };
+    std::vector<char>& in = member[k];
+    if (spec.group.empty()) {
+      const double tol = 1e-9 * std::max(1.0, (hi[body] - lo[body]).norm());
+      for (Index i = 0; i < nodes.size(); ++i) {
+        const Vec2& X = nodes.X[i];
+        in[std::size_t(i)] = node_body[std::size_t(i)] == spec.body && X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol &&
+                             X.y() >= spec.box_min.y() - tol && X.y() <= spec.box_max.y() + tol;
+      }
+      continue;
+    }
+    const MeshRegion* region = nullptr;
+    std::string known;
+    if (body < regions.size())
+      for (const auto& r : regions[body]) {
+        if (r.name == spec.group) region = &r;
+        known += (known.empty() ? "" : ", ") + ("\"" + r.name + "\"");
+      }
+    LOOM_CHECK(region, InputError,
+               spec.region_where << ": error: boundary[" << k << "].region.group: the mesh of body \"" << scene.bodies[body].name
+                                 << "\" has no physical group \"" << spec.group << "\" (its groups: " << (known.empty() ? "none" : known) << ")");
+    for (Index v : region->corners) in[std::size_t(v)] = 1;
+    for (Index i = 0; i < nodes.size(); ++i) {
+      const auto [a, b] = mid_corners[std::size_t(i)];
+      if (a != kNoIndex && in[std::size_t(a)] && in[std::size_t(b)]) in[std::size_t(i)] = 1;
+    }
+  }
+  auto in_region = [&](const BoundarySpec& spec, Index i) { return member[std::size_t(&spec - scene.boundaries.data())][std::size_t(i)] != 0; };
 
   // Seed 000 eq 24: in PFEM, the mid-nodes of boundary edges that carry a condition are tied to the
   // midpoint of their corners (both components), instead of being prescribed or loaded on their own.
@@ -64,7 +94,7 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     for (const BoundarySpec& spec : scene.boundaries) {
       if (!spec.has_traction && !spec.displacement.x && !spec.displacement.y) continue;
       for (const Edge& e : edges)
-        if (e.mid != kNoIndex && inside_box(spec, e.a) && inside_box(spec, e.b)) tied[e.mid] = {e.a, e.b};
+        if (e.mid != kNoIndex && in_region(spec, e.a) && in_region(spec, e.b)) tied[e.mid] = {e.a, e.b};
     }
   for (const auto& [mid, corner] : tied)
     for (int d = 0; d < 2; ++d) bc.ties.push_back({mid * dofs_per_node + d, {corner[0] * dofs_per_node + d, corner[1] * dofs_per_node + d}});
@@ -74,12 +104,13 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
     const BoundarySpec& spec = scene.boundaries[k];
     const auto body = std::size_t(spec.body);
-    auto inside = [&](Index i) { return inside_box(spec, i); };
+    auto inside = [&](Index i) { return in_region(spec, i); };
     std::vector<Index> selected;
     for (Index i = 0; i < nodes.size(); ++i)
       if (inside(i)) selected.push_back(i);
     LOOM_CHECK(!selected.empty(), InputError,
-               spec.region_where << ": error: boundary[" << k << "].region.box: the region selects no node of body \""
+               spec.region_where << ": error: boundary[" << k << "].region." << (spec.group.empty() ? "box" : "group")
+                                 << ": the region selects no node of body \""
                                  << scene.bodies[body].name << "\" (its nodes span [" << lo[body].x() << ", " << lo[body].y()
                                  << "] to [" << hi[body].x() << ", " << hi[body].y() << "])");
     bc.boundary_names.push_back(spec.name);
@@ -122,7 +153,8 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
       for (const auto& e : edges)
         if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, tied.count(e.mid) ? kNoIndex : e.mid, expr}), ++n_edges;
       LOOM_CHECK(n_edges > 0, InputError,
-                 spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary edges with both "
+                 spec.region_where << ": error: boundary[" << k << "].region." << (spec.group.empty() ? "box" : "group")
+                                   << ": a traction needs boundary edges with both "
                                    << "end nodes in the region, and this region holds none");
       for (Index e : expr)
         if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();

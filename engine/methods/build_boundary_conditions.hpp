@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/linalg/dof_map.hpp"
+#include "engine/methods/build_mesh.hpp"
 #include "engine/scene/scene_spec.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
@@ -20,9 +21,11 @@ namespace loom {
 // frozen_tractions (PFEM): the traction edges to use instead of searching the current boundary. A dead
 // load lives on the reference surface (eq 8), whatever the remesh does to the current boundary (alpha
 // shapes may cover a loaded edge), so PFEM computes its edges once, on the initial mesh.
+// regions: the bodies' mesh-file groups, for regions given by group (a mid-node is in a group when both
+// corners of its edge are).
 BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
-                                                int dofs_per_node, bool tie_mid_nodes = false,
+                                                const BodyRegions& regions, int dofs_per_node, bool tie_mid_nodes = false,
                                                 const std::vector<TractionEdge<2>>* frozen_tractions = nullptr);
 
 // Compiles expression `e` into bc.expressions (named by its scene position for error messages); returns

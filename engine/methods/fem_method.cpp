@@ -26,6 +26,7 @@ namespace loom {
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  resolve_probe_groups();
   check_model();
   if (options_.profile) timers_.enable_profile();
   pfem_ = scene_.scene.method == Method::pfem;
@@ -42,6 +43,29 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
 }
 
 FemRun::~FemRun() = default;
+
+// A probe given by a physical point of the mesh file reads at that point's node.
+void FemRun::resolve_probe_groups() {
+  for (std::size_t k = 0; k < m_.scene.probes.size(); ++k) {
+    ProbeSpec& p = m_.scene.probes[k];
+    if (p.group.empty()) continue;
+    const MeshRegion* region = nullptr;
+    std::string known;
+    for (std::size_t b = 0; b < m_.regions.size(); ++b) {
+      if (p.body != kNoIndex && Index(b) != p.body) continue;
+      for (const auto& r : m_.regions[b]) {
+        if (r.name == p.group && !region) region = &r;
+        known += (known.empty() ? "" : ", ") + ("\"" + r.name + "\"");
+      }
+    }
+    std::ostringstream os;
+    os << p.where << ": error: probe[" << k << "].group: ";
+    LOOM_CHECK(region, InputError, os.str() << "no physical group \"" << p.group << "\" in the mesh files (groups: " << (known.empty() ? "none" : known) << ")");
+    LOOM_CHECK(region->corners.size() == 1, InputError,
+               os.str() << "\"" << p.group << "\" holds " << region->corners.size() << " nodes; a probe reads at one point (a physical point)");
+    p.at = m_.nodes.X[region->corners.front()];
+  }
+}
 
 // Scene errors that need the mesh and that only a run cares about (tests build models without conditions):
 // a static body free to move, a point probe off every body.

@@ -54,6 +54,7 @@ class FemRun final : public MethodRun {
   const Timers& timers() const override { return timers_; }
 
  private:
+  void resolve_probe_groups();
   void check_model() const;
   void build_graph();
   void write_initial_state();

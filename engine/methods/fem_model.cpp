@@ -42,7 +42,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.
-  node_body = build_mesh(scene, nodes, cells);
+  node_body = build_mesh(scene, nodes, cells, &regions);
   materials = body_materials(scene);
   allocate_quad_points(cells, quad);
   if (compute_geometry(nodes, cells, quad) != 0) {
@@ -56,7 +56,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
   const int per_node = mixed ? 3 : 2;  // u_x, u_y (, phi)
-  bc = build_boundary_conditions(scene, nodes, cells, node_body, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
+  bc = build_boundary_conditions(scene, nodes, cells, node_body, regions, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
   system.dofs.build(per_node, dof_kinds(bc, cells, nodes.size(), per_node), bc.ties);
   std::vector<const Cells*> blocks;
   for (const auto& c : cells) blocks.push_back(&c);

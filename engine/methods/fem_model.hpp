@@ -8,6 +8,7 @@
 
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/linalg/linear_system.hpp"
+#include "engine/methods/build_mesh.hpp"
 #include "engine/scene/scene_spec.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
@@ -31,6 +32,7 @@ struct FemModel {
   BoundaryConditions<2> bc;
   LinearSystem system;
   std::vector<Index> node_body;  // owning body of each node
+  BodyRegions regions;           // per body: the physical groups of its mesh file (global corner nodes)
   bool mixed = false;            // some body carries the dilatation phi (three dofs per node)
   LinearSolverKind linear_solver = LinearSolverKind::automatic;  // what the tangent allows
 };

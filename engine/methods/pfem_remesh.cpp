@@ -233,7 +233,7 @@ void rebuild_system(FemModel& m, const PfemTopology& topo, bool connectivity_cha
   // Boundary conditions, dofs, sparsity and scatter on the new mesh (the symbolic factorization is
   // redone because the pattern version changes).
   const int per_node = m.system.dofs.per_node;
-  m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, per_node, /*tie_mid_nodes=*/true, &topo.tractions);
+  m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, m.regions, per_node, /*tie_mid_nodes=*/true, &topo.tractions);
   std::vector<DofKind> kinds = dof_kinds(m.bc, m.cells, m.nodes.size(), per_node);
   std::vector<char> in_cell(std::size_t(m.nodes.size()), 0);
   for (const Cells& cb : m.cells)

@@ -1,8 +1,26 @@
 #include "engine/scene/mesh_options.hpp"
 
+#include <filesystem>
 #include <string>
 
 namespace loom {
+
+// A mesh file: its path relative to the scene file (or to the working directory when given by --set);
+// the generators' keys do not apply.
+void read_mesh_file(const TableReader& mesh, MeshSpec& m) {
+  m.generator = MeshGenerator::file;
+  m.file_where = mesh.where("file");
+  const std::string file = mesh.string("file");
+  const std::filesystem::path path(file);
+  m.file = path.is_absolute() || m.file_where.line == 0 || m.file_where.file.empty()
+               ? file
+               : (std::filesystem::path(m.file_where.file).parent_path() / path).lexically_normal().string();
+  if (file.empty()) mesh.error("file", "must not be empty");
+  m.surface = mesh.string("group");
+  m.scale = mesh.real("scale");
+  for (const char* k : {"generator", "divisions", "origin", "size", "pattern", "distortion", "seed"})
+    if (mesh.has(k)) mesh.error(k, std::string(k) + " belongs to the generators; a mesh file takes file, group and scale");
+}
 
 void read_grid(const TableReader& grid, GridSpec& g) {
   read_mesh(grid, g.mesh);
@@ -16,6 +34,12 @@ void read_grid(const TableReader& grid, GridSpec& g) {
 
 void read_mesh(const TableReader& mesh, MeshSpec& m) {
   m.where = mesh.where();
+  m.key = mesh.path();
+  if (mesh.present() && mesh.has("file")) {
+    read_mesh_file(mesh, m);
+    return;
+  }
+  if (mesh.has("group")) mesh.error("group", "group selects a physical surface of a mesh file: it needs file");
   m.generator = mesh.string("generator") == "cooks_membrane" ? MeshGenerator::cooks_membrane : MeshGenerator::rectangle;
   const auto div = mesh.ivec2("divisions");
   m.nx = int(div[0]), m.ny = int(div[1]);

@@ -259,7 +259,14 @@ class Loader {
       t.error("", "missing key body (the scene has several bodies)");
     }
     const auto region = t.table("region");
-    b.region_where = region.where("box");
+    b.group = region.string("group");
+    b.region_where = region.where(region.has("group") ? "group" : "box");
+    if (region.present() && region.has("box") == region.has("group")) region.error("", "give either box or group");
+    if (region.has("group") && s.scene.method == Method::mpm)
+      region.error("group", "method mpm selects grid nodes and loaded edges by box; physical groups select mesh nodes of fem and pfem bodies");
+    if (region.has("group") && b.body != kNoIndex && std::size_t(b.body) < s.bodies.size() &&
+        s.bodies[std::size_t(b.body)].mesh.generator != MeshGenerator::file)
+      region.error("group", "body \"" + s.bodies[std::size_t(b.body)].name + "\" has a generated mesh, without groups: select by box");
     const auto box = region.box("box");
     b.box_min = box[0], b.box_max = box[1];
     if (region.has("box") && (box[0].x() > box[1].x() || box[0].y() > box[1].y()))
@@ -285,13 +292,22 @@ class Loader {
     const std::string kind = t.string("kind");
     p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
                                     {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
-                                    {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy}});
+                                    {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
+                                    {"stress", ProbeKind::stress}});
     p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
     p.max = t.string("bound") == "max";
     const std::string quantity = t.string("quantity");
     p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
                  {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated}});
-    p.component = t.string("component") == "y" ? 1 : 0;
+    const std::string component = t.string("component");
+    p.component = component == "y" ? 1 : 0;
+    p.stress = pick<StressComponent>(component, {{"xx", StressComponent::xx}, {"yy", StressComponent::yy}, {"xy", StressComponent::xy},
+                                                 {"zz", StressComponent::zz}, {"von_mises", StressComponent::von_mises},
+                                                 {"pressure", StressComponent::pressure}});
+    const bool vector_component = component == "x" || component == "y";
+    if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component)
+      t.error("component", p.kind == ProbeKind::stress ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
+                                                      : "kind = \"" + kind + "\" reads component x or y");
     auto needs = [&](const char* key) {
       if (t.present() && t.has("kind") && !t.has(key)) t.error("", std::string("missing key ") + key + " (needed by kind = \"" + kind + "\")");
     };
@@ -300,7 +316,7 @@ class Loader {
     };
     switch (p.kind) {
       case ProbeKind::reaction: {
-        needs("boundary"), needs("component"), unused("at"), unused("body");
+        needs("boundary"), needs("component"), unused("at"), unused("body"), unused("group");
         const std::string bname = t.string("boundary");
         p.boundary = find_by_name(s.boundaries, bname);
         if (t.has("boundary") && p.boundary == kNoIndex) {
@@ -312,9 +328,17 @@ class Loader {
         }
         break;
       }
+      case ProbeKind::stress:
+        if (s.scene.method == Method::mpm) t.error("kind", "kind = \"stress\" reads the cells of fem and pfem meshes; method mpm has none");
+        [[fallthrough]];
       case ProbeKind::point: {
-        needs("at"), needs("component"), unused("boundary");
+        needs("component"), unused("boundary");
+        if (t.present() && t.has("kind") && !t.has("at") && !t.has("group"))
+          t.error("", "missing key at (or group: a physical point of the mesh file), needed by kind = \"" + kind + "\"");
+        if (t.has("at") && t.has("group")) t.error("group", "give either at or group, not both");
         p.at = t.vec2("at");
+        p.group = t.string("group");
+        if (t.has("group") && s.scene.method == Method::mpm) t.error("group", "method mpm starts its tracer points at coordinates: give at");
         if (t.has("body")) {
           const std::string body = t.string("body");
           p.body = find_by_name(s.bodies, body);
@@ -324,10 +348,10 @@ class Loader {
       }
       case ProbeKind::newton:
       case ProbeKind::energy:
-        unused("boundary"), unused("component"), unused("at"), unused("body");
+        unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
         break;
       case ProbeKind::remesh:
-        needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body");
+        needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
         if (s.scene.method != Method::pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\"");
         break;
       case ProbeKind::extent:
@@ -335,7 +359,7 @@ class Loader {
       case ProbeKind::pressure_jump: {
         if (p.kind == ProbeKind::extent) needs("component");
         else unused("component");
-        unused("boundary"), unused("at");
+        unused("boundary"), unused("at"), unused("group");
         if (t.has("body")) {
           const std::string body = t.string("body");
           p.body = find_by_name(s.bodies, body);

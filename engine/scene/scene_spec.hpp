@@ -22,8 +22,9 @@ enum class Stabilisation { none, ppp, asgs, osgs };
 enum class EnergyPart { kinetic, elastic, total };
 enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split };
-enum class MeshGenerator { rectangle, cooks_membrane };
-enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy };
+enum class MeshGenerator { rectangle, cooks_membrane, file };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress };
+enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
 enum class RemeshQuantity { area_change, changed, rejected, isolated };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
@@ -77,7 +78,11 @@ struct MeshSpec {
   double scale = 1.0;
   double distortion = 0.0;
   long long seed = 1;
+  std::string file;     // generator file: the mesh file, resolved (relative to the scene file's directory)
+  std::string surface;  // generator file: the physical surface that is the body ("" = every triangle)
+  std::string key;      // display key of the table, e.g. body[0].mesh
   SourceRef where;
+  SourceRef file_where;
 };
 
 struct VectorExpression {
@@ -110,6 +115,7 @@ struct BoundarySpec {
   std::string name;
   Index body = 0;
   Vec2 box_min = Vec2::Zero(), box_max = Vec2::Zero();
+  std::string group;  // instead of the box: a physical group of the body's mesh file
   SourceRef region_where;
   VectorExpression displacement;
   VectorExpression traction;
@@ -122,7 +128,9 @@ struct ProbeSpec {
   ProbeKind kind = ProbeKind::newton;
   Index boundary = kNoIndex;  // reaction
   int component = 0;          // 0: x, 1: y
-  Vec2 at = Vec2::Zero();     // point
+  StressComponent stress = StressComponent::xx;  // stress
+  Vec2 at = Vec2::Zero();     // point, stress
+  std::string group;          // point, stress: a physical point of the mesh file instead of `at` (resolved into `at`)
   Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
   bool max = true;            // extent: largest (true) or smallest coordinate
   RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh

@@ -94,15 +94,21 @@ std::vector<KeySpec> build_schema() {
                   .one_of({"none", "ppp", "asgs", "osgs"}).by_default("asgs"));
   s.push_back(key("body[].tau_c1", K::real, "p1p1_up, asgs/osgs: c1 of tau1 = c1 h^2 / (2 mu), h = sqrt(grid cell area) ([Moreno et al.] eq 21).").by_default("1.0").above(0));
   s.push_back(key("body[].tau_c2", K::real, "p1p1_up, asgs/osgs: c2 of tau2 = 2 c2 mu ([Moreno et al.] eq 21).").by_default("1.0").above(0));
-  s.push_back(key("body[].mesh", K::table, "Mesh generator and its parameters (method mpm: the mesh the particles are generated in).").require());
-  s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)).")
-                  .one_of({"rectangle", "cooks_membrane"}).require());
+  s.push_back(key("body[].mesh", K::table,
+                  "The body's mesh: a generator and its parameters, or a mesh file (method mpm: the mesh the particles are generated in).").require());
+  s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)); give a generator or a file.")
+                  .one_of({"rectangle", "cooks_membrane"}).require_unless("file"));
+  s.push_back(key("body[].mesh.file", K::string,
+                  "A mesh written by gmsh (.msh, format 4.1 or 2.2, ASCII or binary) of 3- or 6-node triangles in the plane z = 0, relative to "
+                  "the scene file (to the working directory when given with --set). 6-node triangles keep their mid-nodes (curved "
+                  "edges). Its physical groups become regions that [[boundary]] (region.group) and probes (group) select."));
+  s.push_back(key("body[].mesh.group", K::string, "With file: the physical surface that is this body (default: every triangle of the file)."));
   s.push_back(key("body[].mesh.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
   s.push_back(key("body[].mesh.size", K::vec2, "Width and height (rectangle; required there)."));
-  s.push_back(key("body[].mesh.divisions", K::ivec2, "Element edges along x and y (cooks_membrane: along the clamped-to-loaded direction and across).").require());
+  s.push_back(key("body[].mesh.divisions", K::ivec2, "Element edges along x and y (cooks_membrane: along the clamped-to-loaded direction and across).").require_unless("file"));
   s.push_back(key("body[].mesh.pattern", K::choice, "Triangulation of the grid: right, alternating, or shifted ([Schewe 2024] Fig 7b).")
                   .one_of({"right", "alternating", "shifted"}).by_default("right"));
-  s.push_back(key("body[].mesh.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
+  s.push_back(key("body[].mesh.scale", K::real, "Factor applied to all coordinates after generation (or reading: a mesh in m used in mm takes 1000).").by_default("1.0").above(0));
   s.push_back(key("body[].mesh.distortion", K::real, "Random move of interior nodes, as a fraction of the node's smallest altitude (no cell can invert up to 0.25).").by_default("0.0").at_least(0).at_most(0.25));
   s.push_back(key("body[].mesh.seed", K::integer, "Seed of the distortion.").by_default("1").at_least(0));
   s.push_back(key("body[].body_force", K::table, "Body force per unit mass on this body (added to the global [body_force])."));
@@ -136,10 +142,13 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("boundary[].name", K::string, "Name probes refer to.").require());
   s.push_back(key("boundary[].body", K::string, "Body the region selects from (may be left out when there is one body)."));
   s.push_back(key("boundary[].region", K::table,
-                  "Region: nodes inside the box, and boundary edges with both end nodes inside. Method mpm: a displacement or "
-                  "pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges in the box (carried "
-                  "by traction points that move with the body).").require());
-  s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (bounds included, to 1e-9 of the body size).").require());
+                  "Region: nodes inside the box (or of the group), and boundary edges with both end nodes inside. Method mpm: a "
+                  "displacement or pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges in the box "
+                  "(carried by traction points that move with the body).").require());
+  s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (bounds included, to 1e-9 of the body size)."));
+  s.push_back(key("boundary[].region.group", K::string,
+                  "Instead of box: a physical group of the body's mesh file (a curve, a point or a surface); its nodes, and the mid-node "
+                  "of every edge whose two corners are in it."));
   s.push_back(key("boundary[].displacement", K::table,
                   "Prescribed displacement; a component left out stays free (a roller). Method mpm: each step moves the region's "
                   "grid nodes by g(t_n+1) - g(t_n), so g must vanish at t = 0 (the particles start undisplaced)."));
@@ -164,12 +173,17 @@ std::vector<KeySpec> build_schema() {
                   "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation); "
                   "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh; "
                   "energy (method mpm): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles, or their total. "
+                  "stress (fem, pfem): a `component` of the Cauchy stress at `at` (xx, yy, xy, zz, von_mises, or pressure = -tr/3), "
+                  "extrapolated linearly from the quadrature points of the cell that holds the point and averaged over the cells "
+                  "that share it (a node). "
                   "Method mpm: point probes follow a tracer point that starts at `at` and moves with the grid (the material "
                   "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides.")
-                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy"}).require());
+                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "stress"}).require());
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe.").one_of({"x", "y"}));
-  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point probe."));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y), or of a stress probe.")
+                  .one_of({"x", "y", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
+  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe."));
+  s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
   s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));
   s.push_back(key("probe[].quantity", K::choice,
@@ -267,13 +281,13 @@ void print_schema(std::ostream& os, bool markdown) {
     };
     os << "| key | type | default | meaning |\n| --- | --- | --- | --- |\n";
     for (const auto& k : scene_schema())
-      os << "| `" << k.path << "` | " << cell(type_text(k)) << " | " << (k.required ? "required" : k.default_value.empty() ? "-" : "`" + k.default_value + "`")
+      os << "| `" << k.path << "` | " << cell(type_text(k)) << " | " << (k.required ? (k.unless.empty() ? std::string("required") : "required unless " + k.unless) : k.default_value.empty() ? "-" : "`" + k.default_value + "`")
          << " | " << cell(k.doc) << " |\n";
     return;
   }
   for (const auto& k : scene_schema()) {
     os << k.path << "\n    type: " << type_text(k) << "\n    default: "
-       << (k.required ? "(required)" : k.default_value.empty() ? "(none)" : k.default_value) << "\n    " << k.doc << "\n";
+       << (k.required ? (k.unless.empty() ? std::string("(required)") : "(required unless " + k.unless + ")") : k.default_value.empty() ? "(none)" : k.default_value) << "\n    " << k.doc << "\n";
   }
 }
 

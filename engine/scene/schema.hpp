@@ -30,6 +30,7 @@ struct KeySpec {
   std::string path;           // schema path: "time.dt", "body[].mesh.size" ([] marks an array of tables)
   ValueKind kind = ValueKind::string;
   bool required = false;
+  std::string unless;         // required only when this sibling key is absent ("file" for the generators' keys)
   std::string default_value;  // as shown to users; empty: no default
   std::string doc;
   std::vector<std::string> choices;
@@ -37,6 +38,7 @@ struct KeySpec {
   bool lower_open = false, upper_open = false;
 
   KeySpec& require() { required = true; return *this; }
+  KeySpec& require_unless(std::string sibling) { required = true; unless = std::move(sibling); return *this; }
   KeySpec& by_default(std::string v) { default_value = std::move(v); return *this; }
   KeySpec& one_of(std::vector<std::string> c) { choices = std::move(c); return *this; }
   KeySpec& above(double v) { lower = v; lower_open = true; return *this; }

@@ -115,11 +115,12 @@ class Validator {
     auto it = children_by_parent().find(schema);
     if (it == children_by_parent().end()) return;
     for (const KeySpec* k : it->second)
-      if (k->required && !t.contains(last_of(k->path))) {
+      if (k->required && !t.contains(last_of(k->path)) && (k->unless.empty() || !t.contains(k->unless))) {
         SourceRef where = source_of(t, file_);
         if (where.line == 0 && schema.empty()) where = {file_, 1, 1};
         diag_.error(where, display.empty() ? last_of(k->path) : display + "." + last_of(k->path),
-                    std::string("missing required ") + (k->kind == ValueKind::table ? "table" : k->kind == ValueKind::table_array ? "array of tables" : "key"));
+                    std::string("missing required ") + (k->kind == ValueKind::table ? "table" : k->kind == ValueKind::table_array ? "array of tables" : "key") +
+                        (k->unless.empty() ? "" : " (or " + k->unless + ")"));
       }
   }
 

@@ -8,6 +8,18 @@
 
 namespace loom {
 
+double stress_component(const Mat3& sigma, StressComponent c) {
+  switch (c) {
+    case StressComponent::xx: return sigma(0, 0);
+    case StressComponent::yy: return sigma(1, 1);
+    case StressComponent::xy: return sigma(0, 1);
+    case StressComponent::zz: return sigma(2, 2);
+    case StressComponent::pressure: return -sigma.trace() / 3.0;
+    case StressComponent::von_mises: return std::sqrt(1.5 * (sigma - sigma.trace() / 3.0 * Mat3::Identity()).squaredNorm());
+  }
+  return kNaN;
+}
+
 double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, Index cell) {
   double p = 0.0;
   for (int q = 0; q < quad.per_cell; ++q) {
@@ -52,6 +64,22 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         }
       }
     }
+    std::vector<StressSample> samples;
+    if (p.kind == ProbeKind::stress)
+      for (std::size_t b = 0; b < cells.size(); ++b) {
+        const Cells& cb = cells[b];
+        for (Index c = 0; c < cb.size(); ++c) {
+          if (p.body != kNoIndex && cb.body[c] != p.body) continue;
+          const Vec2 &a = nodes.X[cb.node(c, 0)], &e1 = nodes.X[cb.node(c, 1)], &e2 = nodes.X[cb.node(c, 2)];
+          const double area = (e1 - a).x() * (e2 - a).y() - (e2 - a).x() * (e1 - a).y();
+          if (!(area > 0.0)) continue;
+          const Vec2 q = p.at - a;
+          const double l1 = (q.x() * (e2 - a).y() - (e2 - a).x() * q.y()) / area, l2 = ((e1 - a).x() * q.y() - q.x() * (e1 - a).y()) / area;
+          constexpr double tol = 1e-9;
+          if (l1 >= -tol && l2 >= -tol && l1 + l2 <= 1 + tol) samples.push_back({Index(b), c, {1 - l1 - l2, l1, l2}});
+        }
+      }
+    plan.samples.push_back(std::move(samples));
     plan.node.push_back(best);
     plan.nodes.push_back(std::move(body_nodes));
     plan.cell_pairs.push_back(std::move(pairs));
@@ -111,6 +139,21 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
       case ProbeKind::energy:  // method mpm only (the loader rejects it for fem)
         values[k] = kNaN;
         break;
+      case ProbeKind::stress: {
+        Mat3 mean = Mat3::Zero();
+        for (const StressSample& s : plan.samples[k]) {
+          const QuadPoints<2>& q = quad[std::size_t(s.block)];
+          const BodyMaterial& m = materials[std::size_t(cells[std::size_t(s.block)].body[s.cell])];
+          for (int i = 0; i < q.per_cell; ++i) {
+            Mat3 sigma;
+            if (!cauchy_stress(m.model, q.F_n[s.cell * q.per_cell + i], sigma)) sigma.setConstant(kNaN);
+            const double w = q.per_cell == 1 ? 1.0 : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
+            mean += w * sigma / double(plan.samples[k].size());
+          }
+        }
+        values[k] = plan.samples[k].empty() ? kNaN : stress_component(mean, p.stress);
+        break;
+      }
       case ProbeKind::pressure_jump: {
         double sum = 0.0;
         for (const auto& [block, c1, c2] : plan.cell_pairs[k]) {

@@ -8,7 +8,12 @@
 //                 p = -tr(sigma)/3 (averaged over a cell's points) on either side: a measure of pressure
 //                 oscillations (seed 000 Fig 9);
 //  volume:        area of the body in the converged configuration (sum of the point weights dV_n);
-//  remesh:        a quantity of the step's remesh (pfem).
+//  remesh:        a quantity of the step's remesh (pfem);
+//  stress:        a component of the Cauchy stress at the reference point `at`: in each cell that holds the
+//                 point, the quadrature points' stresses (from F_n) fitted linearly -- the 3-point rule at
+//                 barycentric l_q = (2/3, 1/6, 1/6) gives sigma(l) = sum_q sigma_q (2 l_q - 1/3) -- or the
+//                 one point's value, evaluated at the point and averaged over those cells (at a node: the
+//                 usual nodal average of extrapolated element stresses).
 #pragma once
 
 #include <array>
@@ -25,8 +30,14 @@
 
 namespace loom {
 
+struct StressSample {
+  Index block = 0, cell = 0;
+  std::array<double, 3> l{};  // barycentric coordinates of the point in the cell's corner triangle
+};
+
 struct ProbePlan {
   std::vector<ProbeSpec> probes;
+  std::vector<std::vector<StressSample>> samples;  // stress probes: the cells that hold the point
   std::vector<Index> node;                    // point probes: nearest node; others kNoIndex
   std::vector<std::vector<Index>> nodes;      // extent probes: the body's nodes
   std::vector<std::vector<std::array<Index, 3>>> cell_pairs;  // pressure_jump: (block, cell, cell) across interior edges
@@ -41,6 +52,8 @@ void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::v
                      const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
                      const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
                      const RemeshStats& remesh, std::vector<double>& values);
+
+double stress_component(const Mat3& sigma, StressComponent c);
 
 // Mean pressure -tr(sigma)/3 of a cell over its points, from the committed deformation (F_n).
 double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, Index cell);

@@ -25,7 +25,7 @@ TEST(PrintSchema, ListsEveryKeyWithTypeAndDefault) {
     }
     const std::string block = s.substr(p, s.find('\n', s.find("default:", p)) - p);
     if (k.required) {
-      EXPECT_NE(block.find("(required)"), std::string::npos) << block;
+      EXPECT_NE(block.find(k.unless.empty() ? "(required)" : "(required unless " + k.unless + ")"), std::string::npos) << block;
     } else if (!k.default_value.empty()) {
       EXPECT_NE(block.find("default: " + k.default_value), std::string::npos) << block;
     }
