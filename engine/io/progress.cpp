@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -12,14 +14,16 @@ namespace loom {
 
 Progress::Progress(int total_steps, bool enabled)
     : total_(total_steps), enabled_(enabled), tty_(isatty(fileno(stderr)) != 0),
-      start_(std::chrono::steady_clock::now()), last_(start_) {}
+      start_(std::chrono::steady_clock::now()), last_(start_) {
+  if (const char* s = std::getenv("LOOM_PROGRESS_SECONDS")) interval_ = std::max(0.01, std::atof(s));
+}
 
 void Progress::update(int step, double time, int newton_iterations) {
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double since = std::chrono::duration<double>(now - last_).count();
-  if (elapsed < 3.0 || since < (tty_ ? 0.25 : 10.0)) return;
+  if (tty_ ? (elapsed < 3.0 || since < 0.25) : since < interval_) return;
   last_ = now;
   const double eta = step > 0 ? elapsed * (total_ - step) / step : 0.0;
   std::ostringstream os;

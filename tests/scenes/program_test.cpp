@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <regex>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -136,6 +137,19 @@ TEST(Program, OutReplacesTheOutputDirectoryOfTheScene) {
   EXPECT_EQ(parse_pvd(read_text(from_cli + "/cooks-membrane-linear.pvd")).size(), 3u);
   EXPECT_FALSE(std::filesystem::exists(from_cli + "/cooks-membrane-linear_000003.vtu"));  // stale frame removed
   EXPECT_EQ(parse_json(read_text(from_cli + "/run.json")).at("steps_done").number, 2.0);
+}
+
+// Progress on a log (stderr not a terminal): a plain line every LOOM_PROGRESS_SECONDS (10 s by default),
+// here every 0.05 s of a run of about a second; --quiet prints none.
+TEST(Program, ProgressLinesGoToALogWhenStderrIsNotATerminal) {
+  TempDir dir("program_progress");
+  const std::string scene = kSource + "/scenes/cooks_membrane_mpm_dynamic.toml";
+  const std::string cmd = "LOOM_PROGRESS_SECONDS=0.05 " + std::string(LOOM_BINARY) + " run " + scene + " --out " + dir.file("out") +
+                          " --set time.steps=12 --set output.every=0 --set body[0].particles_per_cell=3 >/dev/null 2>" + dir.file("err");
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir.file("err"));
+  const std::string err = read_text(dir.file("err"));
+  const std::regex line(R"(step ([0-9]+)/12  t = [0-9.e+-]+  newton [0-9]+  elapsed [0-9.]+ (ms|s)  remaining ~[0-9.]+ (ms|s)\n)");
+  EXPECT_GE(std::distance(std::sregex_iterator(err.begin(), err.end(), line), std::sregex_iterator()), 2) << err;
 }
 
 TEST(Program, RunPrintsTheTimingTableUnlessQuiet) {

@@ -1,0 +1,103 @@
+#include "engine/scene/probe_options.hpp"
+
+#include "engine/scene/loader_support.hpp"
+
+namespace loom {
+
+void read_probe(SceneSpec& s, const TableReader& t) {
+  ProbeSpec p;
+  p.name = read_name(t);
+  p.where = t.where();
+  if (find_by_name(s.probes, p.name) != kNoIndex || p.name == "step" || p.name == "time")
+    t.error("name", "the probe name \"" + p.name + "\" is already a column of probes.csv");
+  if (p.name.find_first_of(",\"\n") != std::string::npos) t.error("name", "a probe name may not hold commas, quotes or newlines");
+  const std::string kind = t.string("kind");
+  p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
+                                  {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
+                                  {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
+                                  {"stress", ProbeKind::stress}});
+  p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
+  p.max = t.string("bound") == "max";
+  const std::string quantity = t.string("quantity");
+  p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
+               {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated}});
+  const std::string component = t.string("component");
+  p.component = component == "y" ? 1 : 0;
+  p.stress = pick<StressComponent>(component, {{"xx", StressComponent::xx}, {"yy", StressComponent::yy}, {"xy", StressComponent::xy},
+                                               {"zz", StressComponent::zz}, {"von_mises", StressComponent::von_mises},
+                                               {"pressure", StressComponent::pressure}});
+  const bool vector_component = component == "x" || component == "y";
+  if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component)
+    t.error("component", p.kind == ProbeKind::stress ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
+                                                    : "kind = \"" + kind + "\" reads component x or y");
+  auto needs = [&](const char* key) {
+    if (t.present() && t.has("kind") && !t.has(key)) t.error("", std::string("missing key ") + key + " (needed by kind = \"" + kind + "\")");
+  };
+  auto unused = [&](const char* key) {
+    if (t.has(key)) t.error(key, std::string(key) + " is not used by kind = \"" + kind + "\"");
+  };
+  switch (p.kind) {
+    case ProbeKind::reaction: {
+      needs("boundary"), needs("component"), unused("at"), unused("body"), unused("group");
+      const std::string bname = t.string("boundary");
+      p.boundary = find_by_name(s.boundaries, bname);
+      if (t.has("boundary") && p.boundary == kNoIndex) {
+        t.error("boundary", "no [[boundary]] named \"" + bname + "\" (known: " + names_of(s.boundaries) + ")");
+      } else if (p.boundary != kNoIndex && t.has("component")) {
+        const auto& d = s.boundaries[std::size_t(p.boundary)].displacement;
+        if (!(p.component == 0 ? d.x : d.y))
+          t.error("component", "boundary \"" + bname + "\" prescribes no displacement in " + t.string("component") + ": there is no reaction to measure");
+      }
+      break;
+    }
+    case ProbeKind::stress:
+      if (s.scene.method == Method::mpm) t.error("kind", "kind = \"stress\" reads the cells of fem and pfem meshes; method mpm has none");
+      [[fallthrough]];
+    case ProbeKind::point: {
+      needs("component"), unused("boundary");
+      if (t.present() && t.has("kind") && !t.has("at") && !t.has("group"))
+        t.error("", "missing key at (or group: a physical point of the mesh file), needed by kind = \"" + kind + "\"");
+      if (t.has("at") && t.has("group")) t.error("group", "give either at or group, not both");
+      p.at = t.vec2("at");
+      p.group = t.string("group");
+      if (t.has("group") && s.scene.method == Method::mpm) t.error("group", "method mpm starts its tracer points at coordinates: give at");
+      if (t.has("body")) {
+        const std::string body = t.string("body");
+        p.body = find_by_name(s.bodies, body);
+        if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+      }
+      break;
+    }
+    case ProbeKind::newton:
+    case ProbeKind::energy:
+      unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
+      break;
+    case ProbeKind::remesh:
+      needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
+      if (s.scene.method != Method::pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\"");
+      break;
+    case ProbeKind::extent:
+    case ProbeKind::volume:
+    case ProbeKind::pressure_jump: {
+      if (p.kind == ProbeKind::extent) needs("component");
+      else unused("component");
+      unused("boundary"), unused("at"), unused("group");
+      if (t.has("body")) {
+        const std::string body = t.string("body");
+        p.body = find_by_name(s.bodies, body);
+        if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+      } else if (s.bodies.size() == 1) {
+        p.body = 0;
+      } else {
+        t.error("", "missing key body (the scene has several bodies)");
+      }
+      break;
+    }
+  }
+  if (p.kind != ProbeKind::extent) unused("bound");
+  if (p.kind != ProbeKind::remesh) unused("quantity");
+  if (p.kind != ProbeKind::energy) unused("energy");
+  s.probes.push_back(p);
+}
+
+}  // namespace loom
