@@ -13,20 +13,11 @@
 namespace loom {
 
 void FemRun::write_checkpoint(int step) {
+  LOOM_ASSERT(step == ctx_.step, "a checkpoint is of the step that just completed");
   writer_.wait();  // the step's frame is in the collection
   ScopedTimer timer(timers_, "checkpoint");
   CheckpointWriter w;
-  CheckpointHeader h;
-  h.step = step;
-  h.t = ctx_.t;
-  h.newton_iterations = status_.total_iterations;
-  h.cutbacks = status_.total_cutbacks;
-  h.method = pfem_ ? "pfem" : "fem";
-  h.scene_hash = scene_.text_hash;
-  h.linear_solver = solver_.backend();
-  h.last_frame_time = last_frame_time_;
-  h.frames = pvd_.entries();
-  write_checkpoint_header(w, h);
+  write_checkpoint_header(w, checkpoint_header(pfem_ ? "pfem" : "fem", ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
   w.store("nodes", m_.nodes);
   w.vector("node_body", m_.node_body);
   w.value("blocks", Index(m_.cells.size()));
@@ -68,13 +59,7 @@ CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
     rebuild_system(m_, topology_, /*connectivity_changed=*/true);
     probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   }
-  status_.total_iterations = h.newton_iterations;
-  status_.total_cutbacks = h.cutbacks;
-  solver_.use_backend(h.linear_solver);
-  last_frame_time_ = h.last_frame_time;
-  ctx_.step = h.step;
-  ctx_.t = h.t;
-  ctx_.dt = scene_.time.dt;
+  resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
   return h;
 }
 

@@ -46,7 +46,8 @@ MemoryEstimate estimate_memory(const SceneSpec& scene) {
     const double grid = scene.grid.quad4 ? double(scene.grid.mesh.nx) * scene.grid.mesh.ny : cells_of(scene.grid.mesh);
     // Grid geometry and particle columns, and the system over the active cells (at most one per particle).
     e.cells = grid;
-    e.bytes = 300.0 * grid + 400.0 * particles + per_cell(body.element, std::min(grid, particles)) * std::min(grid, particles);
+    const double active = std::min(grid, particles), system = body.element == Formulation::p1p1_up ? 3.0e3 : 1.5e3;
+    e.bytes = 300.0 * grid + 400.0 * particles + system * active;
     return e;
   }
   for (const auto& b : scene.bodies) e.cells += cells_of(b.mesh);

@@ -4,54 +4,40 @@
 // from the particles' cells and are rebuilt by the first step after a restore, as a step rebuilds them
 // whenever the active set changes.
 #include <string>
+#include <utility>
 
+#include "engine/core/errors.hpp"
 #include "engine/methods/mpm_method.hpp"
 #include "engine/methods/run_output.hpp"
 
 namespace loom {
+namespace {
+
+// The stores a checkpoint holds, by name: the same list for writing and reading.
+template <class Model, class Visit>
+void visit_stores(Model& m, Visit&& f) {
+  f("particles", m.particles), f("particle_locations", m.particle_loc), f("traction_points", m.traction_points),
+      f("traction_point_locations", m.traction_loc), f("probe_points", m.probe_points), f("probe_point_locations", m.probe_loc),
+      f("grid_nodes", m.grid_nodes);
+}
+
+}  // namespace
 
 void MpmRun::write_checkpoint(int step) {
+  LOOM_ASSERT(step == ctx_.step, "a checkpoint is of the step that just completed");
   writer_.wait();  // the step's frames are in the collection
   ScopedTimer timer(timers_, "checkpoint");
   CheckpointWriter w;
-  CheckpointHeader h;
-  h.step = step;
-  h.t = ctx_.t;
-  h.newton_iterations = status_.total_iterations;
-  h.cutbacks = status_.total_cutbacks;
-  h.method = "mpm";
-  h.scene_hash = scene_.text_hash;
-  h.linear_solver = solver_.backend();
-  h.last_frame_time = last_frame_time_;
-  h.frames = pvd_.entries();
-  write_checkpoint_header(w, h);
-  w.store("particles", m_.particles);
-  w.store("particle_locations", m_.particle_loc);
-  w.store("traction_points", m_.traction_points);
-  w.store("traction_point_locations", m_.traction_loc);
-  w.store("probe_points", m_.probe_points);
-  w.store("probe_point_locations", m_.probe_loc);
-  w.store("grid_nodes", m_.grid_nodes);
+  write_checkpoint_header(w, checkpoint_header("mpm", ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
+  visit_stores(std::as_const(m_), [&](const char* name, const auto& store) { w.store(name, store); });
   store_checkpoint(w, options_, step);
 }
 
 CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
   const CheckpointHeader h = read_checkpoint_header(r, scene_, options_.log);
-  r.store("particles", m_.particles);
-  r.store("particle_locations", m_.particle_loc);
-  r.store("traction_points", m_.traction_points);
-  r.store("traction_point_locations", m_.traction_loc);
-  r.store("probe_points", m_.probe_points);
-  r.store("probe_point_locations", m_.probe_loc);
-  r.store("grid_nodes", m_.grid_nodes);
+  visit_stores(m_, [&](const char* name, auto& store) { r.store(name, store); });
   m_.activity.version = 0;  // the first step activates the grid of the restored particles
-  status_.total_iterations = h.newton_iterations;
-  status_.total_cutbacks = h.cutbacks;
-  solver_.use_backend(h.linear_solver);
-  last_frame_time_ = h.last_frame_time;
-  ctx_.step = h.step;
-  ctx_.t = h.t;
-  ctx_.dt = scene_.time.dt;
+  resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
   return h;
 }
 

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <iomanip>
-#include <optional>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -227,16 +226,8 @@ RunSummary MpmRun::run() {
   RunSummary summary;
   summary.steps_requested = scene_.time.steps;
   summary.cells = m_.grid.size();
-  RunSchedule schedule{scene_.time.dt, scene_.time.steps, scene_.solver.max_cutbacks, options_.progress, options_.log};
-  schedule.checkpoint_every = options_.write_files ? scene_.output.checkpoint_every : 0;
-  schedule.stop_after = options_.stop_after;
-  std::optional<CheckpointHeader> restart;
-  if (!options_.restart_file.empty()) {
-    restart = restore_checkpoint(CheckpointReader(options_.restart_file));
-    schedule.first_step = restart->step + 1;
-    summary.restarted_from = restart->step;
-  }
-  if (options_.write_files) open_run_output(scene_, options_, restart ? &*restart : nullptr, pvd_, probe_writer_);
+  const RunSchedule schedule = start_run(
+      scene_, options_, [this](const CheckpointReader& r) { return restore_checkpoint(r); }, summary, pvd_, probe_writer_);
 
   RunHooks hooks;
   hooks.write_initial_state = [&] { write_initial_state(); };

@@ -1,5 +1,6 @@
 #include "engine/methods/run_output.hpp"
 
+#include <optional>
 #include <ostream>
 
 #include "engine/core/errors.hpp"
@@ -7,6 +8,48 @@
 #include "engine/io/run_files.hpp"
 
 namespace loom {
+
+CheckpointHeader checkpoint_header(const std::string& method, const StepContext& ctx, const StepStatus& status, const SceneSpec& scene,
+                                   const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd) {
+  CheckpointHeader h;
+  h.step = ctx.step;
+  h.t = ctx.t;
+  h.newton_iterations = status.total_iterations;
+  h.cutbacks = status.total_cutbacks;
+  h.method = method;
+  h.scene_hash = scene.text_hash;
+  h.linear_solver = solver.backend();
+  h.last_frame_time = last_frame_time;
+  h.frames = pvd.entries();
+  return h;
+}
+
+void resume_from(const CheckpointHeader& h, const SceneSpec& scene, StepContext& ctx, StepStatus& status, LinearSolve& solver,
+                 double& last_frame_time) {
+  status.total_iterations = h.newton_iterations;
+  status.total_cutbacks = h.cutbacks;
+  solver.use_backend(h.linear_solver);
+  last_frame_time = h.last_frame_time;
+  ctx.step = h.step;
+  ctx.t = h.t;
+  ctx.dt = scene.time.dt;
+}
+
+RunSchedule start_run(const SceneSpec& scene, const RunOptions& options,
+                      const std::function<CheckpointHeader(const CheckpointReader&)>& restore, RunSummary& summary, PvdWriter& pvd,
+                      ProbeWriter& probes) {
+  RunSchedule schedule{scene.time.dt, scene.time.steps, scene.solver.max_cutbacks, options.progress, options.log};
+  schedule.checkpoint_every = options.write_files ? scene.output.checkpoint_every : 0;
+  schedule.stop_after = options.stop_after;
+  std::optional<CheckpointHeader> restart;
+  if (!options.restart_file.empty()) {
+    restart = restore(CheckpointReader(options.restart_file));
+    schedule.first_step = restart->step + 1;
+    summary.restarted_from = restart->step;
+  }
+  if (options.write_files) open_run_output(scene, options, restart ? &*restart : nullptr, pvd, probes);
+  return schedule;
+}
 
 void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h) {
   w.text("run/method", h.method);

@@ -3,10 +3,15 @@
 // time, the run's totals, the linear solver in use and the frames of the collection.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "engine/drivers/run_driver.hpp"
+#include "engine/drivers/step_status.hpp"
+#include "engine/graph/step_context.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/linalg/linear_solver.hpp"
 #include "engine/io/probe_writer.hpp"
 #include "engine/io/pvd_writer.hpp"
 #include "engine/methods/method.hpp"
@@ -24,6 +29,13 @@ struct CheckpointHeader {
   std::vector<PvdWriter::Entry> frames;
 };
 
+// The header of a checkpoint of the step that just completed.
+CheckpointHeader checkpoint_header(const std::string& method, const StepContext& ctx, const StepStatus& status, const SceneSpec& scene,
+                                   const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd);
+// Where a restarted run resumes: time, totals and the linear back-end of the checkpoint.
+void resume_from(const CheckpointHeader& h, const SceneSpec& scene, StepContext& ctx, StepStatus& status, LinearSolve& solver,
+                 double& last_frame_time);
+
 void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h);
 // Throws InputError if the checkpoint was written by another method; warns on `log` if by another scene text.
 CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSpec& scene, std::ostream* log);
@@ -33,6 +45,12 @@ CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSp
 // its checkpoint's step, removes later ones and restores the collection.
 void open_run_output(const SceneSpec& scene, const RunOptions& options, const CheckpointHeader* restart, PvdWriter& pvd,
                      ProbeWriter& probes);
+
+// The schedule of a run (time step, steps, cut-backs, checkpoints, --stop-after) and its output: a restarted
+// run (options.restart_file) has its stores restored by `restore` first and begins after the checkpoint.
+RunSchedule start_run(const SceneSpec& scene, const RunOptions& options,
+                      const std::function<CheckpointHeader(const CheckpointReader&)>& restore, RunSummary& summary, PvdWriter& pvd,
+                      ProbeWriter& probes);
 
 // Writes the checkpoint of `step` into the output directory and removes the older ones.
 void store_checkpoint(const CheckpointWriter& w, const RunOptions& options, int step);
