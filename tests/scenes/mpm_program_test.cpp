@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
@@ -46,11 +48,23 @@ TEST(MpmProgram, WritesParticleCloudsAndActiveGridsInOneCollection) {
       EXPECT_EQ(cloud->GetNumberOfPoints(), n_particles);
       EXPECT_EQ(cloud->GetNumberOfVerts(), n_particles);
       for (const auto& [name, comps] : std::vector<std::pair<const char*, int>>{
-               {"displacement", 3}, {"velocity", 3}, {"pressure", 1}, {"J", 1}, {"stress", 9}, {"von_mises", 1}}) {
+               {"displacement", 3}, {"velocity", 3}, {"pressure", 1}, {"mean_stress", 1}, {"J", 1}, {"stress", 9}, {"von_mises", 1}}) {
         vtkDataArray* a = cloud->GetPointData()->GetArray(name);
         ASSERT_NE(a, nullptr) << name << " in " << e.file;
         EXPECT_EQ(a->GetNumberOfComponents(), comps) << name;
       }
+      // One pressure convention: pressure = -tr(sigma)/3 as in fem, mean_stress = +tr(sigma)/3 (the mixed p).
+      vtkDataArray *p = cloud->GetPointData()->GetArray("pressure"), *m = cloud->GetPointData()->GetArray("mean_stress"),
+                   *sigma = cloud->GetPointData()->GetArray("stress");
+      for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i) {
+        const double* t = sigma->GetTuple9(i);
+        const double trace = (t[0] + t[4] + t[8]) / 3.0;
+        EXPECT_NEAR(p->GetTuple1(i), -trace, 1e-9 * (1.0 + std::abs(trace))) << e.file << " particle " << i;
+        EXPECT_EQ(m->GetTuple1(i), -p->GetTuple1(i));
+      }
+      auto* note = vtkStringArray::SafeDownCast(cloud->GetFieldData()->GetAbstractArray("pressure_definition"));
+      ASSERT_NE(note, nullptr) << e.file;
+      EXPECT_NE(note->GetValue(0).find("-tr(sigma)/3"), std::string::npos);
     } else {
       vtkNew<vtkXMLUnstructuredGridReader> reader;
       ASSERT_TRUE(reader->CanReadFile(path.c_str())) << path;
@@ -60,7 +74,9 @@ TEST(MpmProgram, WritesParticleCloudsAndActiveGridsInOneCollection) {
       EXPECT_EQ(grid->GetNumberOfPoints(), 9 * 9);  // every grid node; only active cells
       EXPECT_GT(grid->GetNumberOfCells(), 30);
       EXPECT_LT(grid->GetNumberOfCells(), 2 * 8 * 8);
-      for (const char* name : {"displacement", "velocity", "pressure", "mass"}) EXPECT_NE(grid->GetPointData()->GetArray(name), nullptr) << name;
+      for (const char* name : {"displacement", "velocity", "pressure", "mean_stress", "mass"})
+        EXPECT_NE(grid->GetPointData()->GetArray(name), nullptr) << name;
+      EXPECT_NE(grid->GetFieldData()->GetAbstractArray("pressure_definition"), nullptr) << e.file;
     }
   }
   const Json run = parse_json(read_text(out.file("run.json")));

@@ -4,8 +4,10 @@
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -85,6 +87,9 @@ void expect_valid_frame(const VtuFrame& f, const std::vector<Vec2>& X, std::size
   // Cauchy stress (row-major 3x3): symmetric, plane strain (no out-of-plane shear), and the derived
   // pressure and von Mises stress follow from it.
   vtkDataArray *s = f.cell("stress"), *p = f.cell("pressure"), *vm = f.cell("von_mises"), *J = f.cell("J");
+  auto* note = vtkStringArray::SafeDownCast(f.grid->GetFieldData()->GetAbstractArray("pressure_definition"));
+  ASSERT_NE(note, nullptr) << "the file says what pressure is";
+  EXPECT_NE(note->GetValue(0).find("pressure = -tr(sigma)/3"), std::string::npos) << note->GetValue(0);
   for (vtkIdType c = 0; c < f.grid->GetNumberOfCells(); ++c) {
     double t[9];
     s->GetTuple(c, t);

@@ -6,8 +6,10 @@
 #  - every line of README.md that is indented by four spaces or lies inside a ``` block and starts with
 #    `build/loom` (leading spaces allowed); a line `tools/setup.sh && build/loom ...` is run from its
 #    `build/loom` on (setup is not repeated). A line ending in `\` continues on the next one;
-#  - `build/loom` is replaced by LOOM; a `run` command gets `--out` into a temporary directory (an `--out` of
-#    the line is replaced) and `--quiet`; the line's trailing comment stays a comment;
+#  - `build/loom` is replaced by LOOM; a `run` command gets `--out` into a temporary directory and `--quiet`.
+#    An `--out DIR` of the line is replaced by a temporary directory named after DIR, and a `--restart DIR`
+#    of a later line by the same one (without an --out: a restarted run writes where its checkpoint is), so
+#    that a stop-and-restart pair of commands runs as written; the line's trailing comment stays a comment;
 #  - the commands run one after the other from the repository root and must exit 0.
 # Markers, in the line's trailing comment:
 #  - `(~N min)`: the command takes more than about half a minute; it is skipped. Mark every such command so.
@@ -66,9 +68,16 @@ while IFS=$'\t' read -r line cmd; do
   run=${cmd#build/loom}
   if [[ $run =~ ^[[:space:]]+run[[:space:]] ]]; then
     out="$tmp/out$n"
+    if [[ $run =~ [[:space:]]--out[[:space:]]+([^[:space:]#]+) ]]; then out="$tmp/out_${BASH_REMATCH[1]//\//_}"; fi
     # Drop an --out of the line (its value is one word), then put ours right after `run SCENE`.
     run=$(sed -E 's/[[:space:]]--out[[:space:]]+[^[:space:]#]+//' <<< "$run")
-    run=$(sed -E "s|^([[:space:]]+run[[:space:]]+[^[:space:]#]+)|\\1 --out '$out' --quiet|" <<< "$run")
+    if [[ $run =~ [[:space:]]--restart[[:space:]]+([^[:space:]#]+) ]]; then
+      restart="$tmp/out_${BASH_REMATCH[1]//\//_}"
+      run=$(sed -E "s|[[:space:]]--restart[[:space:]]+[^[:space:]#]+| --restart '$restart'|" <<< "$run")
+      run=$(sed -E "s|^([[:space:]]+run[[:space:]]+[^[:space:]#]+)|\\1 --quiet|" <<< "$run")
+    else
+      run=$(sed -E "s|^([[:space:]]+run[[:space:]]+[^[:space:]#]+)|\\1 --out '$out' --quiet|" <<< "$run")
+    fi
   fi
   log="$tmp/log$n"
   start=${EPOCHREALTIME/./}
