@@ -117,7 +117,7 @@ void print_probes(const loom::SceneSpec& scene, const loom::RunSummary& summary,
   if (scene.probes.empty() || values.size() != scene.probes.size()) return;
   std::size_t width = 0;
   for (const auto& p : scene.probes) width = std::max(width, p.name.size());
-  std::cout << "probes at step " << summary.last_converged_step << " (t = " << summary.last_converged_time << "):\n";
+  std::cout << "probes at step " << summary.last_converged_step << " (t = " << summary.last_converged_step * scene.time.dt << "):\n";
   for (std::size_t k = 0; k < values.size(); ++k) {
     char value[32];
     std::snprintf(value, sizeof value, "%.6g", values[k]);
@@ -183,7 +183,7 @@ int run(const Args& a) {
     return summary.stopped ? 0 : 128 + summary.interrupted_by;
   }
   if (!a.quiet)
-    std::cout << "loom: " << steps << (summary.restarted_from ? " (continued from step " + std::to_string(summary.restarted_from) + ")" : "")
+    std::cout << "loom: " << steps << (summary.restarted ? " (continued from step " + std::to_string(summary.restarted_from) + ")" : "")
               << ", " << loom::count_of(summary.newton_iterations, "Newton iteration") << ", " << loom::format_seconds(summary.wall_seconds)
               << " wall; output in " << options.output_directory << "\n";
   return 0;

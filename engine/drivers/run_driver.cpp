@@ -1,5 +1,6 @@
 #include "engine/drivers/run_driver.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -8,15 +9,18 @@
 namespace loom {
 
 TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks) {
-  Progress progress(schedule.steps, schedule.progress);
+  Progress progress(schedule.steps, schedule.progress, schedule.first_step);
   TimeLoopCallbacks callbacks;
   int checkpointed = -1;
+  int completed = schedule.first_step - 1;  // the last scene step that completed (survives a throw from a hook)
+  double completed_time = ctx.t;
   auto checkpoint = [&](int step) {
     if (!hooks.write_checkpoint || step == checkpointed) return;
     hooks.write_checkpoint(step);
     checkpointed = step;
   };
   callbacks.step_done = [&](const StepContext& c, const StepStatus& st) {
+    completed = c.step, completed_time = c.t;
     progress.update(c.step, c.t, st.step_iterations);
     if (schedule.checkpoint_every > 0 && c.step % schedule.checkpoint_every == 0) checkpoint(c.step);
   };
@@ -27,15 +31,21 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
     }
   };
   TimeLoopResult result;
+  // A RunError outside a step's graph (the initial state, a checkpoint, the writer): the run stops there, as
+  // failed, with the steps that completed before it.
   auto stop = [&](const RunError& e) {
     result.completed = false;
     result.anomaly = true;
-    result.failed_step = ctx.step;
+    result.interrupted_by = 0;
+    result.stopped = false;
+    result.failed_step = completed + 1;
     result.failed_dt = ctx.dt;
+    result.last_converged_step = std::max(result.last_converged_step, completed);
+    result.last_converged_time = std::max(result.last_converged_time, completed_time);
     result.failure = e.what();
   };
   try {
-    if (schedule.first_step == 1) hooks.write_initial_state();
+    if (!schedule.restarted) hooks.write_initial_state();
     result = run_time_loop(schedule.dt, schedule.steps, schedule.max_cutbacks, ctx, graph, status, callbacks,
                            TimeLoopRange{schedule.first_step, schedule.stop_after});
     progress.finish();

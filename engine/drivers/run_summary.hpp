@@ -10,7 +10,8 @@ struct RunSummary {
   bool completed = false;           // it reached the last step of the scene
   int interrupted_by = 0;           // the signal that stopped it between steps (SIGINT, SIGTERM), 0 if none
   bool stopped = false;             // stopped after the step asked for (`loom run --stop-after N`)
-  int restarted_from = 0;           // the checkpoint's step of a restarted run (0: started at t = 0)
+  bool restarted = false;           // continued from a checkpoint, of step restarted_from
+  int restarted_from = 0;
   int steps_requested = 0;
   int steps_done = 0;               // scene steps completed
   int last_converged_step = 0;

@@ -99,6 +99,16 @@ class CheckpointReader {
   void store(const std::string& prefix, Store& s) const {
     s.for_each_column([&](const char* name, auto& c) { column(prefix + "/" + name, c); });
   }
+  // A restored store must fit the scene's model (the same mesh, the same particles): InputError naming
+  // what differs otherwise.
+  void expect_size(const std::string& what, std::size_t restored, std::size_t model) const {
+    expect(restored == model, "holds " + std::to_string(restored) + " " + what + ", the scene's model " + std::to_string(model));
+  }
+  void expect(bool ok, const std::string& what) const {
+    LOOM_CHECK(ok, InputError,
+               path_ << ": error: the checkpoint " << what
+                     << ": the scene (its mesh, particles or grid) differs from the one the checkpoint was written for");
+  }
 
  private:
   struct Blob {

@@ -12,8 +12,8 @@
 
 namespace loom {
 
-Progress::Progress(int total_steps, bool enabled)
-    : total_(total_steps), enabled_(enabled), tty_(isatty(fileno(stderr)) != 0),
+Progress::Progress(int total_steps, bool enabled, int first_step)
+    : total_(total_steps), first_(first_step), enabled_(enabled), tty_(isatty(fileno(stderr)) != 0),
       start_(std::chrono::steady_clock::now()), last_(start_) {
   if (const char* s = std::getenv("LOOM_PROGRESS_SECONDS")) interval_ = std::max(0.01, std::atof(s));
 }
@@ -25,7 +25,8 @@ void Progress::update(int step, double time, int newton_iterations) {
   const double since = std::chrono::duration<double>(now - last_).count();
   if (tty_ ? (elapsed < 3.0 || since < 0.25) : since < interval_) return;
   last_ = now;
-  const double eta = step > 0 ? elapsed * (total_ - step) / step : 0.0;
+  const int done = step - first_ + 1;
+  const double eta = done > 0 ? elapsed * (total_ - step) / done : 0.0;
   std::ostringstream os;
   os.precision(4);
   os << "step " << step << "/" << total_ << "  t = " << time << "  newton " << newton_iterations << "  elapsed "

@@ -9,12 +9,13 @@ namespace loom {
 
 class Progress {
  public:
-  Progress(int total_steps, bool enabled);
+  // first_step: the step a restarted run begins with (the rate is measured from there).
+  Progress(int total_steps, bool enabled, int first_step = 1);
   void update(int step, double time, int newton_iterations);
   void finish();
 
  private:
-  int total_;
+  int total_, first_;
   bool enabled_, tty_, shown_ = false;
   double interval_ = 10.0;  // seconds between lines when stderr is not a terminal
   std::chrono::steady_clock::time_point start_, last_;

@@ -45,7 +45,8 @@ const GmshApi* gmsh_api(std::string& why) {
     for (const char* name : {LOOM_GMSH_LIBRARY, "libgmsh.so", "libgmsh.so.4.8"})
       if (*name && (lib = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
     if (!lib) {
-      error = "cannot load libgmsh (" + std::string(dlerror() ? dlerror() : "not found") + "): install it with apt install libgmsh-dev";
+      const char* why = dlerror();  // a second call would return null
+      error = "cannot load libgmsh (" + std::string(why ? why : "not found") + "): install it with apt install libgmsh-dev";
       return false;
     }
     std::string missing;
@@ -150,22 +151,28 @@ GmshFile read_gmsh_file(const std::string& path, const std::string& where, const
     std::size_t enodes_nn = 0;
     g.elements(&types.p, &types.n, &etags, &etags_n, &etags_nn, &enodes, &enodes_n, &enodes_nn, -1, -1, &ierr);
     if (ierr) fail("its elements cannot be read");
+    // Copied out and freed before anything can throw.
+    std::vector<std::vector<std::size_t>> node_tags(types.n);
     for (std::size_t b = 0; b < types.n; ++b) {
       GmshElementBlock block;
       block.type = types.p[b];
-      char* name = nullptr;
-      int order = 0, primary = 0;
-      Owned<double> local{g};
-      g.element_properties(block.type, &name, &block.dim, &order, &block.nodes_per_element, &local.p, &local.n, &primary, &ierr);
-      block.name = take_string(g, name);
       block.tags.assign(etags[b], etags[b] + etags_n[b]);
-      block.nodes.reserve(enodes_n[b]);
-      for (std::size_t k = 0; k < enodes_n[b]; ++k) block.nodes.push_back(node_index(enodes[b][k]));
+      node_tags[b].assign(enodes[b], enodes[b] + enodes_n[b]);
       file.blocks.push_back(std::move(block));
     }
     for (std::size_t b = 0; b < etags_nn; ++b) g.free(etags[b]);
     for (std::size_t b = 0; b < enodes_nn; ++b) g.free(enodes[b]);
     g.free(etags), g.free(etags_n), g.free(enodes), g.free(enodes_n);
+    for (std::size_t b = 0; b < file.blocks.size(); ++b) {
+      GmshElementBlock& block = file.blocks[b];
+      char* name = nullptr;
+      int order = 0, primary = 0;
+      Owned<double> local{g};
+      g.element_properties(block.type, &name, &block.dim, &order, &block.nodes_per_element, &local.p, &local.n, &primary, &ierr);
+      block.name = take_string(g, name);
+      block.nodes.reserve(node_tags[b].size());
+      for (std::size_t tag : node_tags[b]) block.nodes.push_back(node_index(tag));
+    }
   }
   // Physical groups: name, nodes, and the tags of their elements.
   Owned<int> groups{g};

@@ -3,6 +3,7 @@
 // named regions (gmsh physical groups).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -11,12 +12,15 @@
 
 namespace loom {
 
-// A named region of a mesh file: its corner nodes. A mid-node belongs to it when both corners of its edge do
-// (so a region keeps its meaning when PFEM re-creates the mid-nodes).
+// A named region of a mesh file: its corner nodes, and for a curve the edges of its line elements. A mid-node
+// belongs to a curve when its edge is one of the curve's (not every edge between two of its corners: where two
+// curves of one group meet at a corner cell, that cell's third edge joins two of their nodes), and to a surface
+// when both corners of its edge do; so a region keeps its meaning when PFEM re-creates the mid-nodes.
 struct MeshRegion {
   std::string name;
   int dim = 0;                 // 0 points, 1 curves, 2 surfaces
   std::vector<Index> corners;  // indices into MeshData::X, ascending
+  std::vector<std::array<Index, 2>> edges;  // curves: the end corners of each line element, lower index first
 };
 
 struct MeshData {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "engine/core/errors.hpp"
@@ -125,14 +126,28 @@ MeshData triangle_mesh_of(const GmshFile& file, const std::string& surface, cons
         fail("6-node triangle " + std::to_string(tag) + " (element tag) is inverted: its curved edges fold it over (move its mid-nodes toward the straight edges)");
   }
 
-  // Regions: every physical group, by its corner nodes in this body.
-  for (const auto& g : file.groups) {
+  // Regions: every physical group, by its corner nodes in this body (and a curve's edges).
+  std::unordered_map<std::size_t, std::pair<const GmshElementBlock*, std::size_t>> line_of;  // element tag -> line element
+  for (const auto& b : file.blocks)
+    if (b.dim == 1)
+      for (std::size_t e = 0; e < b.tags.size(); ++e) line_of[b.tags[e]] = {&b, e};
+  for (std::size_t k = 0; k < file.groups.size(); ++k) {
+    const GmshGroup& g = file.groups[k];
     MeshRegion r;
     r.name = g.name;
     r.dim = g.dim;
     for (Index n : g.nodes)
       if (corner_of[std::size_t(n)] != kNoIndex) r.corners.push_back(corner_of[std::size_t(n)]);
     std::sort(r.corners.begin(), r.corners.end());
+    if (g.dim == 1)
+      for (std::size_t tag : file.group_elements[k]) {
+        auto it = line_of.find(tag);
+        if (it == line_of.end()) continue;
+        const auto& [block, e] = it->second;
+        const Index a = corner_of[std::size_t(block->nodes[e * std::size_t(block->nodes_per_element)])];
+        const Index b = corner_of[std::size_t(block->nodes[e * std::size_t(block->nodes_per_element) + 1])];
+        if (a != kNoIndex && b != kNoIndex) r.edges.push_back({std::min(a, b), std::max(a, b)});
+      }
     mesh.regions.push_back(std::move(r));
   }
   return mesh;

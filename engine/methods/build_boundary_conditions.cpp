@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -80,9 +81,12 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
                spec.region_where << ": error: boundary[" << k << "].region.group: the mesh of body \"" << scene.bodies[body].name
                                  << "\" has no physical group \"" << spec.group << "\" (its groups: " << (known.empty() ? "none" : known) << ")");
     for (Index v : region->corners) in[std::size_t(v)] = 1;
+    const std::set<std::array<Index, 2>> curve(region->edges.begin(), region->edges.end());
     for (Index i = 0; i < nodes.size(); ++i) {
       const auto [a, b] = mid_corners[std::size_t(i)];
-      if (a != kNoIndex && in[std::size_t(a)] && in[std::size_t(b)]) in[std::size_t(i)] = 1;
+      if (a == kNoIndex || !in[std::size_t(a)] || !in[std::size_t(b)]) continue;
+      // A curve holds the mid-nodes of its own edges; a surface those of every edge between its nodes.
+      if (region->dim == 2 || (region->dim == 1 && curve.count({std::min(a, b), std::max(a, b)}))) in[std::size_t(i)] = 1;
     }
   }
   auto in_region = [&](const BoundarySpec& spec, Index i) { return member[std::size_t(&spec - scene.boundaries.data())][std::size_t(i)] != 0; };

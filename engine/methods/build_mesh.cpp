@@ -56,6 +56,7 @@ std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vect
     if (!regions) continue;
     for (auto r : mesh.regions) {
       for (Index& v : r.corners) v += offset;
+      for (auto& e : r.edges) e[0] += offset, e[1] += offset;
       (*regions)[b].push_back(std::move(r));
     }
   }

@@ -3,6 +3,7 @@
 // What follows from them -- boundary conditions on the current mesh, dof numbering, sparsity, scatters,
 // the probes' nodes -- is rebuilt on restore exactly as a remesh rebuilds it, so that the restarted run
 // computes what the uninterrupted one would have, bit for bit.
+#include <algorithm>
 #include <string>
 
 #include "engine/core/errors.hpp"
@@ -36,8 +37,20 @@ void FemRun::write_checkpoint(int step) {
 
 CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
   const CheckpointHeader h = read_checkpoint_header(r, scene_, options_.log);
+  // What the scene built, to check the checkpoint against: fem keeps its mesh, pfem its particles.
+  const Index n_nodes = m_.nodes.size();
+  const std::vector<Index> particle_body(m_.node_body.begin(), m_.node_body.begin() + (pfem_ ? topology_.n_points : n_nodes));
+  std::vector<std::vector<Index>> connectivity;  // fem: the mesh the system was built on
+  for (const auto& c : m_.cells) connectivity.push_back(c.nodes.values());
   r.store("nodes", m_.nodes);
   r.vector("node_body", m_.node_body);
+  r.expect_size("node bodies", m_.node_body.size(), std::size_t(m_.nodes.size()));
+  if (pfem_) {
+    r.expect(m_.node_body.size() >= particle_body.size() && std::equal(particle_body.begin(), particle_body.end(), m_.node_body.begin()),
+             "has other particles than the scene (" + std::to_string(particle_body.size()) + " in its bodies)");
+  } else {
+    r.expect_size("nodes", std::size_t(m_.nodes.size()), std::size_t(n_nodes));
+  }
   const Index blocks = r.value<Index>("blocks");
   LOOM_CHECK(blocks == Index(m_.cells.size()), InputError,
              r.path() << ": error: the checkpoint has " << blocks << " cell blocks, the scene " << m_.cells.size()
@@ -50,10 +63,15 @@ CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
     r.vector(key + "/by_colour", m_.cells[k].by_colour);
     r.vector(key + "/colour_offsets", m_.cells[k].colour_offsets);
     r.store(key + "/quad_points", m_.quad[k]);
+    r.expect_size("quadrature points in block " + std::to_string(k), std::size_t(m_.quad[k].size()),
+                  std::size_t(m_.cells[k].size()) * std::size_t(m_.quad[k].per_cell));
+    if (!pfem_) r.expect(m_.cells[k].nodes.values() == connectivity[k], "has another mesh (cell block " + std::to_string(k) + ")");
+    for (Index v : m_.cells[k].nodes) r.expect(v >= 0 && v < m_.nodes.size(), "has cells on nodes it does not hold");
   }
   if (pfem_) {
     for (std::size_t b = 0; b < topology_.triangles.size(); ++b) {
       r.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
+      for (Index v : topology_.triangles[b]) r.expect(v >= 0 && v < topology_.n_points, "has triangles on nodes that are not particles");
       topology_.boundary[b] = boundary_of(topology_.triangles[b]);
     }
     rebuild_system(m_, topology_, /*connectivity_changed=*/true);

@@ -77,7 +77,7 @@ void check_point_probes_inside(const SceneSpec& scene, const std::vector<Vec2>& 
                                const std::vector<Index>& corner_body) {
   for (std::size_t k = 0; k < scene.probes.size(); ++k) {
     const ProbeSpec& p = scene.probes[k];
-    if (p.kind != ProbeKind::point) continue;
+    if (p.kind != ProbeKind::point && p.kind != ProbeKind::stress) continue;
     bool inside = false;
     for (std::size_t t = 0; t + 2 < corners.size() && !inside; t += 3) {
       if (p.body != kNoIndex && corner_body[t / 3] != p.body) continue;
@@ -93,7 +93,8 @@ void check_point_probes_inside(const SceneSpec& scene, const std::vector<Vec2>& 
     std::ostringstream os;
     os << p.where << ": error: probe[" << k << "].at: (" << p.at.x() << ", " << p.at.y() << ") lies outside "
        << (p.body == kNoIndex ? std::string("every body") : "body \"" + scene.bodies[std::size_t(p.body)].name + "\"")
-       << " (reference coordinates); a point probe reads the body at that point";
+       << " (reference coordinates; a curved 6-node cell counts by its straight corner triangle); a "
+       << (p.kind == ProbeKind::stress ? "stress" : "point") << " probe reads the body at that point";
     throw InputError(os.str());
   }
 }

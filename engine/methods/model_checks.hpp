@@ -18,7 +18,7 @@ void check_rigid_motions_held(const SceneSpec& scene, const Nodes<2>& nodes, con
                               const BoundaryConditions<2>& bc, const std::vector<Index>& node_body,
                               const std::vector<Index>* active = nullptr);
 
-// Each point probe's `at` must lie in a cell of its body (of any body when it names none), in reference
+// Each point or stress probe's `at` must lie in a cell of its body (of any body when it names none), in reference
 // coordinates: cells given by their first three (corner) nodes, to a tolerance of 1e-6 of the cell size.
 void check_point_probes_inside(const SceneSpec& scene, const std::vector<Vec2>& X, const std::vector<Index>& corners,
                                const std::vector<Index>& corner_body);

@@ -35,7 +35,13 @@ void MpmRun::write_checkpoint(int step) {
 
 CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
   const CheckpointHeader h = read_checkpoint_header(r, scene_, options_.log);
-  visit_stores(m_, [&](const char* name, auto& store) { r.store(name, store); });
+  std::vector<std::size_t> sizes;  // what the scene built: the same particles, points and grid
+  visit_stores(std::as_const(m_), [&](const char*, const auto& store) { sizes.push_back(std::size_t(store.size())); });
+  std::size_t k = 0;
+  visit_stores(m_, [&](const char* name, auto& store) {
+    r.store(name, store);
+    r.expect_size(std::string(name) + " entries", std::size_t(store.size()), sizes[k++]);
+  });
   m_.activity.version = 0;  // the first step activates the grid of the restored particles
   resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
   return h;

@@ -45,7 +45,11 @@ RunSchedule start_run(const SceneSpec& scene, const RunOptions& options,
   if (!options.restart_file.empty()) {
     restart = restore(CheckpointReader(options.restart_file));
     schedule.first_step = restart->step + 1;
+    schedule.restarted = summary.restarted = true;
     summary.restarted_from = restart->step;
+    LOOM_CHECK(options.stop_after == 0 || options.stop_after > restart->step, InputError,
+               "--stop-after " << options.stop_after << ": error: the run continues from the checkpoint of step " << restart->step
+                               << "; stop after a later step");
   }
   if (options.write_files) open_run_output(scene, options, restart ? &*restart : nullptr, pvd, probes);
   return schedule;
@@ -102,14 +106,15 @@ void open_run_output(const SceneSpec& scene, const RunOptions& options, const Ch
   const std::string& dir = options.output_directory;
   prepare_output_directory(dir, options.output_origin.empty() ? "output.directory" : options.output_origin);
   const std::string stem = file_stem(scene.scene.name);
+  std::vector<std::string> names;
+  for (const auto& p : scene.probes) names.push_back(p.name);
+  // A restart checks the probes of the run it continues before it removes anything of that run.
+  if (restart) probes.reopen(dir + "/probes.csv", names, restart->step);
   remove_frames(dir, stem, restart ? restart->step : -1);
   if (!restart) remove_checkpoints(dir, -1);
   pvd = PvdWriter(dir, stem);
   if (restart) pvd.restore(restart->frames);
-  std::vector<std::string> names;
-  for (const auto& p : scene.probes) names.push_back(p.name);
-  if (restart) probes.reopen(dir + "/probes.csv", names, restart->step);
-  else probes.open(dir + "/probes.csv", names);
+  if (!restart) probes.open(dir + "/probes.csv", names);
 }
 
 void store_checkpoint(const CheckpointWriter& w, const RunOptions& options, int step) {

@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <thread>
 
+#include "engine/core/interrupt.hpp"
+#include "engine/scene/scene_loader.hpp"
 #include "tests/scenes/scene_checks.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -158,13 +160,84 @@ TEST(Restart, BadRestartsAreBadInput) {
   // --out elsewhere.
   const Command out = run_loom({"run", scene, "--quiet", "--restart", dir.path(), "--out", dir.file("elsewhere")});
   EXPECT_EQ(out.exit_code, 2) << out.err;
+  EXPECT_NE(out.err.find("a restarted run continues in the directory of its checkpoint"), std::string::npos) << out.err;
+  // --stop-after at or before the checkpoint's step.
+  const Command early = run_loom({"run", scene, "--quiet", "--restart", dir.path(), "--stop-after", "10"});
+  EXPECT_EQ(early.exit_code, 2) << early.err;
+  EXPECT_NE(early.err.find("--stop-after 10: error: the run continues from the checkpoint of step 10"), std::string::npos) << early.err;
   // A truncated file.
   std::string bytes = read_text(checkpoint);
   write_text(checkpoint, bytes.substr(0, bytes.size() / 2));
   const Command cut = run_loom({"run", scene, "--quiet", "--restart", checkpoint});
   EXPECT_EQ(cut.exit_code, 2) << cut.err;
   EXPECT_NE(cut.err.find("truncated or corrupt"), std::string::npos) << cut.err;
-  for (const Command* c : {&none, &other, &out, &cut}) EXPECT_FALSE(looks_like_crash(c->err)) << c->err;
+  for (const Command* c : {&none, &other, &out, &early, &cut}) EXPECT_FALSE(looks_like_crash(c->err)) << c->err;
+}
+
+// A checkpoint of another mesh or other particles than the scene builds is bad input, not a crash (it loaded
+// columns of any size into stores whose system was built for the scene: a segfault, or a singular tangent).
+TEST(Restart, ACheckpointOfAnotherMeshIsBadInput) {
+  const struct {
+    std::string name, scene, set;
+  } cases[] = {{"fem", "constrained_block_fem.toml", "body[0].mesh.divisions=[16,8]"},
+               {"pfem", "constrained_block_pfem.toml", "body[0].mesh.divisions=[16,8]"},
+               {"mpm", "cooks_membrane_mpm_dynamic.toml", "body[0].particles_per_cell=3"}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    TempDir dir("restart_mesh_" + c.name);
+    const std::string scene = kSource + "/scenes/" + c.scene;
+    const Command stop = run_loom({"run", scene, "--quiet", "--out", dir.path(), "--set", c.set, "--set", "output.every=0", "--stop-after", "1"});
+    ASSERT_EQ(stop.exit_code, 0) << stop.err;
+    const Command other = run_loom({"run", scene, "--quiet", "--restart", dir.path(), "--set", "output.every=0"});
+    EXPECT_EQ(other.exit_code, 2) << other.err;
+    EXPECT_NE(other.err.find("differs from the one the checkpoint was written for"), std::string::npos) << other.err;
+    EXPECT_FALSE(looks_like_crash(other.err)) << other.err;
+  }
+}
+
+// A restart into a directory that holds more than the checkpoint -- the whole run, which went on past its
+// last checkpoint: probes.csv is cut back to the checkpoint's step, later frames go, the collection lists the
+// frames up to the checkpoint, and the continued run writes the same files again.
+TEST(Restart, ContinuingADirectoryThatWentPastItsCheckpointRewritesTheSameFiles) {
+  TempDir dir("restart_past");
+  const std::string scene = kSource + "/scenes/constrained_block_fem.toml";
+  const std::vector<std::string> sets = {"time.steps=100", "output.every=20", "output.checkpoint_every=30"};
+  const Command whole = run_loom(with({"run", scene, "--quiet", "--out", dir.path()}, sets));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("checkpoint_000090.loom")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("checkpoint_000060.loom"))) << "only the newest checkpoint is kept";
+  const std::string probes = read_text(dir.file("probes.csv")), last = read_text(dir.file("constrained-block-fem_000100.vtu"));
+  const std::string pvd = read_text(dir.file("constrained-block-fem.pvd"));
+  const Command again = run_loom(with({"run", scene, "--quiet", "--restart", dir.path()}, sets));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(read_text(dir.file("probes.csv")), probes);
+  EXPECT_EQ(read_text(dir.file("constrained-block-fem_000100.vtu")), last);
+  EXPECT_EQ(read_text(dir.file("constrained-block-fem.pvd")), pvd);
+  EXPECT_EQ(parse_json(read_text(dir.file("run.json"))).at("restarted_from_step").number, 90.0);
+}
+
+// Interrupted before its first step: the checkpoint of step 0 continues like a fresh run (step 0's row and
+// frame are not written twice), and its directory can be continued again.
+TEST(Restart, ACheckpointOfStepZeroContinuesLikeAFreshRun) {
+  TempDir dir("restart_zero");
+  const std::string scene = kSource + "/scenes/constrained_block_fem.toml";
+  const std::vector<std::string> sets = {"time.steps=20", "output.every=5", "output.checkpoint_every=7"};
+  {
+    const SceneSpec spec = load_scene(scene, sets);
+    auto run = make_fem_run(spec, dir.file("part"));
+    request_interrupt(SIGINT);
+    const RunSummary s = run->run();
+    clear_interrupt();
+    EXPECT_EQ(s.interrupted_by, SIGINT);
+    EXPECT_EQ(s.last_converged_step, 0);
+  }
+  ASSERT_TRUE(std::filesystem::exists(dir.file("part/checkpoint_000000.loom")));
+  const Command c = run_loom(with({"run", scene, "--quiet", "--restart", dir.file("part")}, sets));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const Command whole = run_loom(with({"run", scene, "--quiet", "--out", dir.file("whole")}, sets));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(read_text(dir.file("part/probes.csv")), read_text(dir.file("whole/probes.csv")));
+  EXPECT_EQ(read_text(dir.file("part/constrained-block-fem.pvd")), read_text(dir.file("whole/constrained-block-fem.pvd")));
 }
 
 }  // namespace

@@ -56,6 +56,24 @@ TEST(GmshMesh, ReadsThreeNodeTrianglesAndPhysicalGroupsFromAscii41) {
 
 TEST(GmshMesh, ReadsTheOlderFormat22) { expect_square(square("square_tri3_v22.msh")); }
 
+// A mesh whose triangles all run clockwise (a surface meshed with its normal along -z) is turned, not refused.
+TEST(GmshMesh, AClockwiseMeshIsTurnedCounterClockwise) { expect_square(square("square_clockwise.msh")); }
+
+// A group of two curves meeting at a corner: its edges are those of its line elements (8), all on y = 0 or
+// x = 1; the corner cell's diagonal, which joins two of its nodes, is not one of them.
+TEST(GmshMesh, ACurveGroupKeepsTheEdgesOfItsLineElements) {
+  const MeshData m = square("square_tri3.msh");
+  const MeshRegion* r = m.region("bottom_right");
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->corners.size(), 9u);
+  ASSERT_EQ(r->edges.size(), 8u);
+  for (const auto& e : r->edges) {
+    const Vec2 a = m.X[std::size_t(e[0])], b = m.X[std::size_t(e[1])];
+    EXPECT_TRUE((a.y() == 0.0 && b.y() == 0.0) || (a.x() == 1.0 && b.x() == 1.0)) << a.transpose() << " - " << b.transpose();
+    EXPECT_LT(e[0], e[1]);
+  }
+}
+
 // Binary 4.1, 6-node triangles: every edge has one mid-node, at its middle (the square's edges are
 // straight), shared by the two triangles of the edge, in the order of edges (c0,c1), (c1,c2), (c2,c0).
 TEST(GmshMesh, ReadsSixNodeTrianglesFromBinary41WithTheirOwnMidNodes) {
@@ -110,6 +128,7 @@ TEST(GmshMesh, FilesLoomCannotUseAreInputErrorsNamingTheFileAndTheCell) {
   expect_error("square_zero_area.msh", "", "triangle 19 (element tag) has zero area");
   expect_error("square_tri3.msh", "disk", "no physical surface named \"disk\" (its physical groups: \"corner\" (point), \"bottom\" (curve)");
   expect_error("README.md", "", "gmsh cannot read it");
+  expect_error("square_tri6_folded.msh", "", "6-node triangle 18 (element tag) is inverted: its curved edges fold it over");
 }
 
 }  // namespace

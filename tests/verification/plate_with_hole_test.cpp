@@ -73,5 +73,24 @@ TEST(PlateWithHole, PhysicalGroupsSelectTheNodesOfTheirCurvesAndPoints) {
   EXPECT_EQ(probes[1].at, Vec2(1.0, 0.0));
 }
 
+// A region given by a group of two curves meeting at a corner (tests/meshes/square.geo, "bottom_right") holds
+// the mid-nodes of the curves' own edges and no other: the corner cell's third edge also joins two of the
+// group's nodes, and its mid-node, inside the square, must stay free.
+TEST(PlateWithHole, AGroupOfTwoCurvesHoldsOnlyTheMidNodesOfItsOwnEdges) {
+  const std::string text = std::string("[scene]\nname = \"l\"\nmethod = \"fem\"\n[time]\ndt = 1.0\nsteps = 1\n") +
+                           "[[material]]\nname = \"m\"\nmodel = \"linear_elastic\"\nE = 1.0\nnu = 0.3\n" +
+                           "[[body]]\nname = \"square\"\nmaterial = \"m\"\nelement = \"tri6\"\nmesh = { file = \"" + LOOM_SOURCE_DIR +
+                           "/tests/meshes/square_tri6_binary.msh\" }\n" +
+                           "[[boundary]]\nname = \"l\"\nregion = { group = \"bottom_right\" }\ndisplacement = { x = 0.0, y = 0.0 }\n";
+  auto r = testing::make_fem_run(load_scene_text(text, "l.toml", {}));
+  const auto& bc = r->boundary_conditions();
+  ASSERT_EQ(bc.boundary_nodes.size(), 1u);
+  for (Index i : bc.boundary_nodes[0]) {
+    const Vec2 X = r->nodes().X[i];
+    EXPECT_TRUE(std::abs(X.y()) < 1e-12 || std::abs(X.x() - 1.0) < 1e-12) << "node at " << X.transpose() << " is not on the curves";
+  }
+  EXPECT_EQ(bc.boundary_nodes[0].size(), 17u);  // 9 corners and 8 mid-nodes along y = 0 and x = 1
+}
+
 }  // namespace
 }  // namespace loom
