@@ -54,7 +54,6 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
         return result;
       }
       ++halvings;
-      ++result.cutbacks;
       ++status.total_cutbacks;
       h = 0.5 * ctx.dt;
     }

@@ -21,7 +21,6 @@ struct TimeLoopResult {
   double last_converged_time = 0.0;  // time of the last committed state (may be inside a failed step)
   int failed_step = 0;
   double failed_dt = 0.0;
-  int cutbacks = 0;                  // over the whole run
   bool anomaly = false;              // a system threw (RunError): no cut-back is tried
   int interrupted_by = 0;            // the signal that stopped the loop between steps, 0 if none
   bool stopped = false;              // stopped after step `stop_after` as asked

@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/triangle_geometry.hpp"
 
 namespace loom {
 namespace {
@@ -19,8 +20,6 @@ std::string group_list(const GmshFile& file) {
   for (const auto& g : file.groups) s += (s.empty() ? "" : ", ") + ("\"" + g.name + "\" (" + kinds[std::clamp(g.dim, 0, 3)] + ")");
   return s.empty() ? "none" : s;
 }
-
-double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) { return 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y()); }
 
 // det of the isoparametric map of a 6-node triangle at barycentric (l0, l1, l2), corners and mid-nodes x[6].
 double tri6_jacobian(const Vec2 x[6], double l1, double l2) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/triangle_geometry.hpp"
 #include "engine/methods/rigid_motions.hpp"
 
 namespace loom {
@@ -81,13 +82,8 @@ void check_point_probes_inside(const SceneSpec& scene, const std::vector<Vec2>& 
     bool inside = false;
     for (std::size_t t = 0; t + 2 < corners.size() && !inside; t += 3) {
       if (p.body != kNoIndex && corner_body[t / 3] != p.body) continue;
-      const Vec2 &a = X[std::size_t(corners[t])], &b = X[std::size_t(corners[t + 1])], &c = X[std::size_t(corners[t + 2])];
-      const double area = (b - a).x() * (c - a).y() - (c - a).x() * (b - a).y();
-      if (area == 0.0) continue;
-      const Vec2 q = p.at - a;
-      const double l1 = (q.x() * (c - a).y() - (c - a).x() * q.y()) / area, l2 = ((b - a).x() * q.y() - q.x() * (b - a).y()) / area;
-      const double tol = 1e-6;  // barycentric: relative to the cell size
-      inside = l1 >= -tol && l2 >= -tol && l1 + l2 <= 1 + tol;
+      const auto l = barycentric(X[std::size_t(corners[t])], X[std::size_t(corners[t + 1])], X[std::size_t(corners[t + 2])], p.at);
+      inside = l && l->minCoeff() >= -1e-6;  // barycentric: relative to the cell size
     }
     if (inside) continue;
     std::ostringstream os;

@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 
+#include "engine/mesh/triangle_geometry.hpp"
+
 namespace loom {
 
 double stress_component(const Mat3& sigma, StressComponent c) {
@@ -71,12 +73,9 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         for (Index c = 0; c < cb.size(); ++c) {
           if (p.body != kNoIndex && cb.body[c] != p.body) continue;
           const Vec2 &a = nodes.X[cb.node(c, 0)], &e1 = nodes.X[cb.node(c, 1)], &e2 = nodes.X[cb.node(c, 2)];
-          const double area = (e1 - a).x() * (e2 - a).y() - (e2 - a).x() * (e1 - a).y();
-          if (!(area > 0.0)) continue;
-          const Vec2 q = p.at - a;
-          const double l1 = (q.x() * (e2 - a).y() - (e2 - a).x() * q.y()) / area, l2 = ((e1 - a).x() * q.y() - q.x() * (e1 - a).y()) / area;
-          constexpr double tol = 1e-9;
-          if (l1 >= -tol && l2 >= -tol && l1 + l2 <= 1 + tol) samples.push_back({Index(b), c, {1 - l1 - l2, l1, l2}});
+          if (!(signed_area(a, e1, e2) > 0.0)) continue;
+          const auto l = barycentric(a, e1, e2, p.at);
+          if (l && l->minCoeff() >= -1e-9) samples.push_back({Index(b), c, {(*l)[0], (*l)[1], (*l)[2]}});
         }
       }
     plan.samples.push_back(std::move(samples));
