@@ -145,8 +145,7 @@ int run(const Args& a) {
   loom::RunSummary summary = method->run();
   summary.threads = threads;
 
-  const char* methods[] = {"fem", "pfem", "es_pfem", "mpm", "mpm_fem"};
-  const loom::RunIdentity id{LOOM_VERSION, a.scene, scene.scene.name, scene.text_hash, methods[int(scene.scene.method)]};
+  const loom::RunIdentity id{LOOM_VERSION, a.scene, scene.scene.name, scene.text_hash, loom::method_name(scene.scene.method)};
   loom::write_file_atomic(options.output_directory + "/run.json", loom::run_json(id, summary));
   {
     std::ostringstream json;

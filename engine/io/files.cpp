@@ -24,12 +24,6 @@ void write_file_atomic(const std::string& path, const std::string& content) {
   LOOM_CHECK(!ec, RunError, "cannot rename " << tmp << " to " << path << ": " << ec.message());
 }
 
-void make_directories(const std::string& path) {
-  std::error_code ec;
-  std::filesystem::create_directories(path, ec);
-  LOOM_CHECK(!ec, RunError, "cannot create the output directory " << path << ": " << ec.message());
-}
-
 std::string file_stem(const std::string& name) {
   std::string s = name;
   for (char& c : s)

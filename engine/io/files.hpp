@@ -8,8 +8,6 @@ namespace loom {
 
 // Writes `content` to `path` atomically (temporary file in the same directory, then rename).
 void write_file_atomic(const std::string& path, const std::string& content);
-// Creates the directory and its parents; throws RunError if it cannot.
-void make_directories(const std::string& path);
 std::string temporary_name(const std::string& path);
 // A scene name made safe as a file-name stem: characters other than letters, digits, - _ . become _.
 std::string file_stem(const std::string& name);

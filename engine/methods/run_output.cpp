@@ -76,8 +76,7 @@ void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h) {
 CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSpec& scene, std::ostream* log) {
   CheckpointHeader h;
   h.method = r.text("run/method");
-  const char* names[] = {"fem", "pfem", "es_pfem", "mpm", "mpm_fem"};
-  const std::string method = names[int(scene.scene.method)];
+  const std::string method = method_name(scene.scene.method);
   LOOM_CHECK(h.method == method, InputError,
              r.path() << ": error: the checkpoint is of a method " << h.method << " run; the scene runs method " << method);
   h.scene_hash = r.text("run/scene_hash");

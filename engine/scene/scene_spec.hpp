@@ -16,6 +16,10 @@
 namespace loom {
 
 enum class Method { fem, pfem, es_pfem, mpm, mpm_fem };
+inline const char* method_name(Method m) {
+  constexpr const char* names[] = {"fem", "pfem", "es_pfem", "mpm", "mpm_fem"};
+  return names[int(m)];
+}
 enum class Integrator { static_, euler_backward, newmark };
 enum class InitialAcceleration { zero, equilibrium };
 enum class Stabilisation { none, ppp, asgs, osgs };
