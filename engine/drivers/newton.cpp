@@ -28,9 +28,12 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     report.failure = why;
     return report;
   };
+  bool first = true;
   auto assemble = [&]() {
     ScopedTimer t(timers, "newton/assemble");
-    return p.assemble(true);
+    const bool tangent = first || !s.tangent_once_per_step;
+    first = false;
+    return p.assemble(tangent);
   };
 
   if (!assemble()) return fail("a cell is inverted at the start of the step");

@@ -23,13 +23,17 @@ struct NewtonSettings {
   double residual_absolute = 1e-10;
   double increment_relative = 1e-12;
   bool line_search = false;
+  // Modified Newton (seed 001 §3.6): the tangent of the first iteration is assembled and factorised once per
+  // step; later iterations assemble the residual only and reuse the factorisation.
+  bool tangent_once_per_step = false;
   std::ostream* log = nullptr;  // one line per iteration (residual, step length) when set
 };
 
 class NonlinearProblem {
  public:
   virtual ~NonlinearProblem() = default;
-  // Residual (and tangent) at the current iterate; false if the iterate is inadmissible (J <= 0).
+  // Residual (and tangent) at the current iterate; false if the iterate is inadmissible (J <= 0). solve()
+  // uses the tangent of the last assemble(true), factorised once.
   virtual bool assemble(bool with_tangent) = 0;
   virtual double residual_norm() const = 0;
   // Solves tangent * du = -residual; false if the tangent is singular.

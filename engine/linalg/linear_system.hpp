@@ -15,6 +15,7 @@ struct LinearSystem {
   DofMap dofs;
   SparsePattern pattern;              // tangent on the free dofs
   std::vector<CellScatter> scatter;   // one per cell block, parallel to the Cells stores
+  std::vector<CellScatter> domain_scatter;  // one per Edges store (integration domains of seed 001)
   Eigen::VectorXd residual_full;      // n_dofs: f_int + M a - f_ext (reactions on prescribed dofs)
   Eigen::VectorXd residual;           // n_free: the Newton residual, with the Dirichlet lift
   Eigen::VectorXd increment;          // n_free: solution of K du = -r

@@ -190,10 +190,10 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
 std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node) {
   std::vector<DofKind> kinds(std::size_t(n_nodes) * std::size_t(dofs_per_node), DofKind::free);
   if (dofs_per_node == 3) {
-    // The dilatation is an unknown only at nodes of mixed u-phi cells.
+    // The dilatation (or pressure) is an unknown only at nodes of mixed u-phi (u-p) cells.
     for (Index i = 0; i < n_nodes; ++i) kinds[std::size_t(3 * i + 2)] = DofKind::absent;
     for (const Cells& cb : cells)
-      if (has_dilatation(cb.formulation))
+      if (has_dilatation(cb.formulation) || has_pressure(cb.formulation))
         for (Index k = 0; k < cb.nodes.size(); ++k) kinds[std::size_t(3 * cb.nodes[k] + 2)] = DofKind::free;
   }
   for (const auto& p : bc.prescribed) kinds[std::size_t(p.dof)] = DofKind::prescribed;

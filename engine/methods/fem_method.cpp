@@ -18,6 +18,7 @@
 #include "engine/store/store_report.hpp"
 #include "systems/loads/apply_boundary_conditions.hpp"
 #include "systems/output/snapshot_frame.hpp"
+#include "systems/update/commit_domains.hpp"
 #include "systems/update/commit_step.hpp"
 
 namespace loom {
@@ -108,10 +109,15 @@ void FemRun::build_graph() {
     });
   }
   g.add_system("apply_boundary_conditions", &apply_boundary_conditions, m_.nodes, m_.cells, m_.materials, m_.bc);
-  g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.system, &status_}}, [this] { newton_node(); },
+  g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.edges, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
   const auto commit = g.add_system("commit", &commit_step, m_.cells, m_.nodes, m_.quad);
   g.run_if(commit, &status_, [this] { return status_.converged; });
+  if (!m_.edges.empty()) {
+    g.name_store(&m_.edges, "edges");
+    const auto commit_edges = g.add_system("commit_domains", &commit_domains, m_.cells, m_.nodes, m_.quad, m_.edges);
+    g.run_if(commit_edges, &status_, [this] { return status_.converged; });
+  }
   const auto probes = g.add_node("probes", {{&m_.nodes, &m_.cells, &m_.quad, &m_.materials, &m_.system, &m_.bc}, {&probe_writer_}}, [this] { probes_node(); });
   g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
   const auto output = g.add_node("output", {{&m_.nodes, &m_.cells, &m_.quad, &m_.materials}, {&writer_}}, [this] { output_node(); },
@@ -130,7 +136,7 @@ void FemRun::remesh_node() {
 
 void FemRun::newton_node() {
   reset_iterate(m_.nodes);
-  FemNewtonProblem problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_);
+  FemNewtonProblem problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_, &m_.edges);
   NewtonSettings settings = newton_settings_of(scene_.solver);
   if (options_.verbose && options_.log) {
     *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
@@ -209,11 +215,24 @@ void FemRun::describe(std::ostream& os) const {
   graph_->print(os);
 }
 
+// a_0 = M^-1 (f_ext - f_int) with the lumped mass (the residual of the initial assembly is f_int - f_ext at
+// rest): a constant load is then integrated exactly by Newmark and Bossak (free fall: u = g t^2 / 2).
+void FemRun::set_equilibrium_acceleration() {
+  const DofMap& dofs = m_.system.dofs;
+  for (Index i = 0; i < m_.nodes.size(); ++i)
+    for (int d = 0; d < 2; ++d) {
+      const Index dof = dofs.dof(i, d);
+      const double m = m_.nodes.lumped_mass[i];
+      m_.nodes.a_n[i][d] = dofs.kind[std::size_t(dof)] == DofKind::free && m > 0.0 ? -m_.system.residual_full[dof] / m : 0.0;
+    }
+}
+
 void FemRun::write_initial_state() {
   // Step 0: loads at t = 0, one assembly for the reactions, probes and the first frame.
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
   apply_boundary_conditions(ctx_, m_.nodes, m_.cells, m_.materials, m_.bc);
-  assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system);
+  assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
+  if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium) set_equilibrium_acceleration();
   status_ = StepStatus{};
   status_.converged = true;
   probes_node();

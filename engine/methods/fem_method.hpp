@@ -58,6 +58,7 @@ class FemRun final : public MethodRun {
   void check_model() const;
   void build_graph();
   void write_initial_state();
+  void set_equilibrium_acceleration();
   // engine/methods/fem_checkpoint.cpp
   void write_checkpoint(int step);
   CheckpointHeader restore_checkpoint(const CheckpointReader& r);

@@ -5,26 +5,57 @@
 #include "engine/core/errors.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_mesh.hpp"
+#include "engine/mesh/smoothing_edges.hpp"
+#include "engine/mesh/triangle_geometry.hpp"
 #include "engine/methods/memory_estimate.hpp"
+#include "systems/assemble/smoothing_geometry.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/update/lumped_mass.hpp"
 
 namespace loom {
 namespace {
 
-bool has_mixed_bodies(const SceneSpec& scene) {
+bool has_body(const SceneSpec& scene, bool (*test)(Formulation)) {
   for (const auto& b : scene.bodies)
-    if (has_dilatation(b.element)) return true;
+    if (test(b.element)) return true;
   return false;
 }
 
-// The mixed u-phi tangent is not symmetric (seed 000 eqs 40-42): CHOLMOD, which reads one triangle,
-// cannot take it.
+bool mixed_formulation(Formulation f) { return has_dilatation(f) || has_pressure(f); }
+
+// The mixed tangents are not symmetric (u-phi: seed 000 eqs 40-42; u-p: seed 001 eqs 60-61): CHOLMOD, which
+// reads one triangle, cannot take them.
 LinearSolverKind linear_solver_for(const SceneSpec& scene) {
-  if (!has_mixed_bodies(scene)) return scene.solver.linear;
+  if (!has_body(scene, mixed_formulation)) return scene.solver.linear;
+  const char* element = has_body(scene, has_dilatation) ? "p1p1_uphi" : has_body(scene, has_pressure) ? "es_up or fem_up" : "";
   LOOM_CHECK(scene.solver.linear != LinearSolverKind::cholmod, InputError,
-             scene.file << ": error: solver.linear: cholmod needs a symmetric tangent, and element p1p1_uphi has none; use umfpack or auto");
+             scene.file << ": error: solver.linear: cholmod needs a symmetric tangent, and element " << element << " has none; use umfpack or auto");
   return LinearSolverKind::umfpack;
+}
+
+// The integration domains of seed 001's blocks (edges or triangles) with their geometry in B_0, and the
+// triangles' reference areas for the pressure terms.
+void build_domains(const Nodes<2>& nodes, std::vector<Cells>& cells, std::vector<Edges<2>>& edges) {
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    Cells& cb = cells[b];
+    if (!integrates_on_domains(cb.formulation)) continue;
+    std::vector<Edges<2>> made;
+    if (edge_smoothed(cb.formulation)) {
+      EdgeDomains d = build_edge_domains(cb, nodes.size());
+      made.push_back(std::move(d.interior)), made.push_back(std::move(d.boundary));
+    } else {
+      made.push_back(build_triangle_domains(cb, nodes.size()));
+    }
+    for (auto& e : made) {
+      if (e.size() == 0) continue;
+      e.cell_block = Index(b);
+      compute_smoothing_geometry(nodes, cb, e);
+      edges.push_back(std::move(e));
+    }
+    cb.measure.use();
+    cb.measure.resize(cb.size());
+    for (Index c = 0; c < cb.size(); ++c) cb.measure[c] = signed_area(nodes.X[cb.node(c, 0)], nodes.X[cb.node(c, 1)], nodes.X[cb.node(c, 2)]);
+  }
 }
 
 }  // namespace
@@ -33,12 +64,15 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   check_memory(scene);
   // 1. Columns: dynamic integrators need velocities and accelerations, lumped mass its column, mixed
   //    elements the dilatation.
-  const bool dynamic = scene.time.integrator == Integrator::euler_backward;
+  const bool dynamic = scene.time.integrator != Integrator::static_;
   for (auto* c : {&nodes.v, &nodes.v_n, &nodes.a, &nodes.a_n}) c->use(dynamic);
   nodes.lumped_mass.use(dynamic && scene.time.mass == MassKind::lumped);
-  mixed = has_mixed_bodies(scene);
-  nodes.phi.use(mixed);
-  nodes.phi_n.use(mixed);
+  mixed = has_body(scene, mixed_formulation);
+  const bool dilatation = has_body(scene, has_dilatation), pressure = has_body(scene, has_pressure);
+  nodes.phi.use(dilatation);
+  nodes.phi_n.use(dilatation);
+  nodes.p.use(pressure);
+  nodes.p_n.use(pressure);
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.
@@ -52,6 +86,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
     else where << scene.file << ": error: body mesh";
     throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (size or scale too extreme?)");
   }
+  build_domains(nodes, cells, edges);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
@@ -60,9 +95,12 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   system.dofs.build(per_node, dof_kinds(bc, cells, nodes.size(), per_node), bc.ties);
   std::vector<const Cells*> blocks;
   for (const auto& c : cells) blocks.push_back(&c);
+  for (const auto& e : edges) blocks.push_back(&e.stencil);
   build_pattern(blocks, system.dofs, system.pattern);
   system.scatter.resize(cells.size());
   for (std::size_t b = 0; b < cells.size(); ++b) build_scatter(cells[b], system.dofs, system.pattern, system.scatter[b]);
+  system.domain_scatter.resize(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) build_scatter(edges[e].stencil, system.dofs, system.pattern, system.domain_scatter[e]);
   system.resize_vectors();
 
 }

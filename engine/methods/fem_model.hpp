@@ -12,6 +12,7 @@
 #include "engine/scene/scene_spec.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
+#include "engine/store/edges.hpp"
 #include "engine/store/nodes.hpp"
 #include "engine/store/points.hpp"
 #include "engine/store/quad_points.hpp"
@@ -28,12 +29,13 @@ struct FemModel {
   Points<2> points;  // not used by mesh-based FEM: no column is allocated
   std::vector<Cells> cells;
   std::vector<QuadPoints<2>> quad;
+  std::vector<Edges<2>> edges;   // integration domains of seed 001's formulations (es_*, fem_*), each tied to a cell block
   std::vector<BodyMaterial> materials;
   BoundaryConditions<2> bc;
   LinearSystem system;
   std::vector<Index> node_body;  // owning body of each node
   BodyRegions regions;           // per body: the physical groups of its mesh file (global corner nodes)
-  bool mixed = false;            // some body carries the dilatation phi (three dofs per node)
+  bool mixed = false;            // some body carries the dilatation phi or the pressure p (three dofs per node)
   LinearSolverKind linear_solver = LinearSolverKind::automatic;  // what the tangent allows
 };
 

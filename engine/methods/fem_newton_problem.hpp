@@ -26,6 +26,7 @@ inline NewtonSettings newton_settings_of(const SolverSpec& solver) {
   s.residual_absolute = solver.residual_absolute;
   s.increment_relative = solver.increment_relative;
   s.line_search = solver.line_search;
+  s.tangent_once_per_step = solver.tangent == TangentUpdate::once_per_step;
   return s;
 }
 
@@ -33,16 +34,21 @@ class FemNewtonProblem final : public NonlinearProblem {
  public:
   FemNewtonProblem(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const std::vector<Cells>& cells,
                    const BoundaryConditions<2>& bc, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
-                   LinearSystem& system, LinearSolve& solver, Timers& timers)
+                   LinearSystem& system, LinearSolve& solver, Timers& timers, std::vector<Edges<2>>* domains = nullptr)
       : ctx_(ctx), materials_(materials), cells_(cells), bc_(bc), nodes_(nodes), quad_(quad), system_(system),
-        solver_(solver), timers_(timers) {}
+        solver_(solver), timers_(timers), domains_(domains) {}
 
   bool assemble(bool with_tangent) override {
     const auto mode = with_tangent ? AssemblyMode::residual_and_tangent : AssemblyMode::residual;
-    return assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_).inverted_cells == 0;
+    fresh_tangent_ = fresh_tangent_ || with_tangent;
+    return assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
   }
   double residual_norm() const override { return system_.residual.norm(); }
-  bool solve() override { return solve_linear_step(nodes_, bc_, solver_, system_, timers_) == LinearSolveStatus::ok; }
+  bool solve() override {
+    const bool refactorize = fresh_tangent_;
+    fresh_tangent_ = false;
+    return solve_linear_step(nodes_, bc_, solver_, system_, timers_, refactorize) == LinearSolveStatus::ok;
+  }
   std::string solve_failure() const override { return solver_.failure().empty() ? "the tangent matrix is singular" : solver_.failure(); }
   void update(double step) override { update_iterate(step, system_, nodes_); }
   double increment_norm() const override { return system_.increment.norm(); }
@@ -75,6 +81,8 @@ class FemNewtonProblem final : public NonlinearProblem {
   LinearSystem& system_;
   LinearSolve& solver_;
   Timers& timers_;
+  std::vector<Edges<2>>* domains_;
+  bool fresh_tangent_ = false;  // a tangent was assembled since the last factorisation
 };
 
 }  // namespace loom

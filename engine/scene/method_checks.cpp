@@ -9,7 +9,8 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
   const auto materials = root.array("material");
   if (!mpm) {
     if (grid.present()) root.error("grid", "[grid] is used by method = \"mpm\" only");
-    if (s.time.integrator == Integrator::newmark) time.error("integrator", "newmark is implemented by method = \"mpm\" (fem: static or euler_backward)");
+    if (s.time.initial_acceleration == InitialAcceleration::equilibrium && s.time.mass == MassKind::consistent)
+      time.error("initial_acceleration", "equilibrium solves for a_0 with the lumped mass; use mass = \"lumped\"");
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
       if (s.bodies[b].element == Formulation::p1p1_up) bodies[b].error("element", "p1p1_up is an MPM grid formulation: use method = \"mpm\"");
       if (bodies[b].has("particles_per_cell")) bodies[b].error("particles_per_cell", "particles_per_cell is used by method = \"mpm\" only");
@@ -21,7 +22,9 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     return;
   }
   if (!grid.present()) root.table("scene").error("method", "method = \"mpm\" needs a background grid: add a [grid] table");
-  if (s.time.integrator == Integrator::euler_backward) time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
+  if (s.time.integrator == Integrator::euler_backward || s.time.integrator == Integrator::bossak)
+    time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
+  if (root.table("solver").has("tangent")) root.table("solver").error("tangent", "method mpm assembles its tangent at every iteration");
   if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass (seed 003 §5)");
   if (s.bodies.size() > 1) bodies[1].error("", "method mpm supports one body for now");
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {

@@ -16,6 +16,7 @@
 #include "engine/scene/method_checks.hpp"
 #include "engine/scene/overrides.hpp"
 #include "engine/scene/pfem_options.hpp"
+#include "engine/scene/smoothed_options.hpp"
 #include "engine/scene/probe_options.hpp"
 #include "engine/scene/loader_support.hpp"
 #include "engine/scene/schema_validator.hpp"
@@ -91,11 +92,13 @@ class Loader {
   void read_time(SceneSpec& s) {
     const auto t = root_.table("time");
     s.time.integrator = pick<Integrator>(t.string("integrator"), {{"static", Integrator::static_}, {"euler_backward", Integrator::euler_backward},
-                                                                  {"newmark", Integrator::newmark}});
+                                                                  {"newmark", Integrator::newmark}, {"bossak", Integrator::bossak}});
+    s.time.alpha = t.real("alpha");
+    if (t.has("alpha") && s.time.integrator != Integrator::bossak) t.error("alpha", "alpha is used by integrator = \"bossak\" only");
     s.time.initial_acceleration = pick<InitialAcceleration>(t.string("initial_acceleration"), {{"zero", InitialAcceleration::zero},
                                                                                                {"equilibrium", InitialAcceleration::equilibrium}});
-    if (t.has("initial_acceleration") && s.time.integrator != Integrator::newmark)
-      t.error("initial_acceleration", "initial_acceleration is used by integrator = \"newmark\" only");
+    if (t.has("initial_acceleration") && s.time.integrator != Integrator::newmark && s.time.integrator != Integrator::bossak)
+      t.error("initial_acceleration", "initial_acceleration is used by integrator = \"newmark\" or \"bossak\" only");
     s.time.dt = t.real("dt");
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
@@ -112,6 +115,8 @@ class Loader {
     s.solver.linear = pick<LinearSolverKind>(t.string("linear"), {{"auto", LinearSolverKind::automatic},
                                                                   {"cholmod", LinearSolverKind::cholmod},
                                                                   {"umfpack", LinearSolverKind::umfpack}});
+    s.solver.tangent = pick<TangentUpdate>(t.string("tangent"), {{"every_iteration", TangentUpdate::every_iteration},
+                                                                 {"once_per_step", TangentUpdate::once_per_step}});
   }
 
   void read_material(SceneSpec& s, const TableReader& t) {
@@ -120,7 +125,9 @@ class Loader {
     m.where = t.where();
     if (find_by_name(s.materials, m.name) != kNoIndex) t.error("name", "a material named \"" + m.name + "\" already exists");
     m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic},
-                                                                       {"neo_hooke_split", MaterialModel::neo_hooke_split}});
+                                                                       {"neo_hooke_split", MaterialModel::neo_hooke_split},
+                                                                       {"hencky_perzyna", MaterialModel::hencky_perzyna}});
+    read_hencky_perzyna(m, t);
     m.density = t.real("density");
     const bool e_nu = t.has("E") || t.has("nu"), k_g = t.has("K") || t.has("G");
     if (e_nu && k_g) {
@@ -159,8 +166,10 @@ class Loader {
     if (t.has("material") && b.material == kNoIndex)
       t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
     b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi},
-                                                        {"p1p1_up", Formulation::p1p1_up}});
+                                                        {"p1p1_up", Formulation::p1p1_up}, {"es_up", Formulation::es_up},
+                                                        {"es_u", Formulation::es_u}, {"fem_up", Formulation::fem_up}, {"fem_u", Formulation::fem_u}});
     read_mpm_body(s, t, b);
+    read_smoothed_body(s, t, b);
     if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&
         s.materials[std::size_t(b.material)].model == MaterialModel::linear_elastic) {
       // phi is tied to det F (eq 26): a finite-strain constraint that a small-strain law cannot honour

@@ -3,6 +3,7 @@
 // (an empty region), so the specs keep the source position of the keys they came from.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,12 +21,13 @@ inline const char* method_name(Method m) {
   constexpr const char* names[] = {"fem", "pfem", "es_pfem", "mpm", "mpm_fem"};
   return names[int(m)];
 }
-enum class Integrator { static_, euler_backward, newmark };
+enum class Integrator { static_, euler_backward, newmark, bossak };
 enum class InitialAcceleration { zero, equilibrium };
 enum class Stabilisation { none, ppp, asgs, osgs };
 enum class EnergyPart { kinetic, elastic, total };
 enum class MassKind { lumped, consistent };
-enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split };
+enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
+enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
@@ -50,7 +52,8 @@ struct TimeSpec {
   double dt = 1.0;
   int steps = 1;
   MassKind mass = MassKind::lumped;
-  InitialAcceleration initial_acceleration = InitialAcceleration::zero;  // newmark
+  InitialAcceleration initial_acceleration = InitialAcceleration::zero;  // newmark, bossak
+  double alpha = -0.3;  // bossak: alpha_B in [-1/3, 0]
 };
 
 struct SolverSpec {
@@ -61,6 +64,7 @@ struct SolverSpec {
   bool line_search = false;
   int max_cutbacks = 4;
   LinearSolverKind linear = LinearSolverKind::automatic;
+  TangentUpdate tangent = TangentUpdate::every_iteration;
 };
 
 // Elastic constants are kept in both forms; the loader derives the missing pair.
@@ -70,6 +74,9 @@ struct MaterialSpec {
   double E = 0, nu = 0, K = 0, G = 0;
   double lambda = 0, mu = 0;  // Lamé constants (seed 000 eq 49-50)
   double density = 0;
+  // hencky_perzyna (seed 001 §2): shear yield stress (infinite: Hencky elastic) and Bingham viscosity.
+  double tau0 = std::numeric_limits<double>::infinity();
+  double viscosity = 0;
   SourceRef where;
 };
 
@@ -98,6 +105,7 @@ struct BodySpec {
   Index material = 0;  // index into SceneSpec::materials
   Formulation element = Formulation::p1;
   double alpha_s = 0.0;  // PPP stabilisation of p1p1_uphi, stress units (resolved from the scene's formula)
+  double alpha_stab = 0.0;  // PPP stabilisation of es_up and fem_up, dimensionless (seed 001 eq 48)
   MeshSpec mesh;
   VectorExpression body_force;
   // Method mpm (seed 003):

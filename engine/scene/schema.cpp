@@ -35,14 +35,19 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("time", K::table, "Time stepping.").require());
   s.push_back(key("time.integrator", K::choice,
                   "static: no inertia; euler_backward: implicit Euler ([Schewe 2024] eq 12; methods fem and pfem); newmark: Newmark "
-                  "with beta = 1/4, gamma = 1/2 on the grid and lumped mass ([Moreno et al.] §3.3; method mpm).")
-                  .one_of({"static", "euler_backward", "newmark"}).by_default("static"));
+                  "with beta = 1/4, gamma = 1/2 (method mpm: on the grid with lumped mass, [Moreno et al.] §3.3); bossak: alpha-Bossak "
+                  "(Wood, Bossak & Zienkiewicz 1980; [Reinold 2021] §3.6) with beta = (1 - alpha)^2 / 4, gamma = 1/2 - alpha (methods fem "
+                  "and pfem).")
+                  .one_of({"static", "euler_backward", "newmark", "bossak"}).by_default("static"));
+  s.push_back(key("time.alpha", K::real,
+                  "bossak: alpha_B in [-1/3, 0]; 0 is Newmark's average acceleration (no numerical damping), more negative damps the "
+                  "highest frequencies more.").by_default("-0.3").at_least(-1.0 / 3.0).at_most(0));
   s.push_back(key("time.dt", K::real, "Time step (pseudo-time for static runs; boundary expressions see t = step * dt).").require().above(0));
   s.push_back(key("time.steps", K::integer, "Number of steps.").require().at_least(1));
   s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent (mpm: lumped only).")
                   .one_of({"lumped", "consistent"}).by_default("lumped"));
   s.push_back(key("time.initial_acceleration", K::choice,
-                  "newmark: the particles' acceleration at t = 0: zero ([Moreno et al.] Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
+                  "newmark, bossak: the acceleration at t = 0: zero ([Moreno et al.] Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
                   "lumped mass, so that a suddenly applied constant load is integrated exactly).")
                   .one_of({"zero", "equilibrium"}).by_default("zero"));
   // [solver]
@@ -55,20 +60,31 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("solver.max_cutbacks", K::integer, "Times a step may be halved after Newton fails before the run gives up.").by_default("4").at_least(0).at_most(30));
   s.push_back(key("solver.linear", K::choice, "Linear solver: cholmod (SPD), umfpack (general LU), auto (CHOLMOD, UMFPACK if not positive definite).")
                   .one_of({"auto", "cholmod", "umfpack"}).by_default("auto"));
+  s.push_back(key("solver.tangent", K::choice,
+                  "every_iteration: full Newton; once_per_step: the tangent of the step's first iteration is factorised once and reused "
+                  "(modified Newton, [Reinold 2021] §3.6; methods fem and pfem).")
+                  .one_of({"every_iteration", "once_per_step"}).by_default("every_iteration"));
   // [[material]]
   s.push_back(key("material", K::table_array, "Materials; give either (E, nu) or (K, G).").require());
   s.push_back(key("material[].name", K::string, "Name bodies refer to.").require());
   s.push_back(key("material[].model", K::choice,
                   "Plane strain, F33 = 1. neo_hooke: psi = lambda/2 ln^2 J + mu/2 (F:F - 3) - mu ln J ([Schewe 2024] eqs 48-51); "
                   "linear_elastic: small-strain Hooke, sigma = lambda tr(eps) I + 2 mu eps; neo_hooke_split: psi = mu/2 (J^(-2/3) F:F - 3) "
-                  "+ K/2 (J - 1)^2 ([Moreno et al.] §2.2), the material of the mixed u-p formulation.")
-                  .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split"}).require());
+                  "+ K/2 (J - 1)^2 ([Moreno et al.] §2.2), the material of the mixed u-p formulation; hencky_perzyna: Hencky elasticity "
+                  "(quadratic in the logarithmic elastic strains) with Perzyna viscoplasticity of von Mises type, a Bingham material "
+                  "([Reinold 2021] §2), for the elements es_up, es_u, fem_up and fem_u.")
+                  .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split", "hencky_perzyna"}).require());
   s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
   s.push_back(key("material[].nu", K::real,
                   "Poisson's ratio (with E), -1 < nu < 0.5; nu = 0.5 (incompressible, 1/kappa = 0) with model neo_hooke_split and "
                   "element p1p1_up.").above(-1).at_most(0.5));
   s.push_back(key("material[].K", K::real, "Bulk modulus (with G).").above(0));
   s.push_back(key("material[].G", K::real, "Shear modulus (with K).").above(0));
+  s.push_back(key("material[].tau0", K::real,
+                  "hencky_perzyna: yield stress in simple shear, tau_eq = sqrt(dev tau : dev tau / 2) <= tau0 (absent: elastic, no yield).").at_least(0));
+  s.push_back(key("material[].viscosity", K::real,
+                  "hencky_perzyna: Bingham plastic viscosity mu (steady simple shear: tau = tau0 + mu gammadot); 0: rate-independent "
+                  "von Mises.").by_default("0").at_least(0));
   s.push_back(key("material[].density", K::real, "Reference mass density rho_0 (needed by dynamic integrators and body forces).").by_default("0").at_least(0));
   // [[body]]
   s.push_back(key("body", K::table_array, "Bodies: a mesh, a material and an element.").require());
@@ -78,8 +94,14 @@ std::vector<KeySpec> build_schema() {
                   "Element formulation: p1 (linear displacement triangle), tri6 (quadratic displacement triangle, [Schewe 2024] §4.1), "
                   "p1p1_uphi (mixed linear displacement / nodal volume dilatation with polynomial pressure projection, [Schewe 2024] "
                   "§4.2), p1p1_up (method mpm: mixed linear displacement / linear pressure on the grid, [Moreno et al.] eqs 16-26). Method mpm "
-                  "takes p1 or p1p1_up; they are the formulation on the background grid.")
-                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up"}).by_default("p1"));
+                  "takes p1 or p1p1_up; they are the formulation on the background grid. es_up, es_u: edge-based smoothed linear "
+                  "triangles ([Reinold 2021] §3), mixed displacement / nodal pressure with PPP (alpha_stab) or displacement only; fem_up, "
+                  "fem_u: the same integrated per triangle; all four with model hencky_perzyna or linear_elastic (geometrically linear).")
+                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u"}).by_default("p1"));
+  s.push_back(key("body[].alpha_stab", K::real,
+                  "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "
+                  "([Reinold 2021] eq 48); 0: the unstabilised u-p element (ES-FEM-UP); the paper uses 0.5 (Cook's membrane) and 200 "
+                  "(flows).").at_least(0));
   s.push_back(key("body[].alpha_s", K::expression,
                   "PPP stabilisation factor alpha_s of p1p1_uphi ([Schewe 2024] eq 30), in stress units: a number, or a formula in the "
                   "material's K, G, E and nu (eq 47 suggests K; eq 52 and the benchmarks use K/10). Larger: smoother pressure, softer "

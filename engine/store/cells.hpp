@@ -12,7 +12,9 @@
 
 namespace loom {
 
-enum class CellType { tri3, tri6, quad4 };  // quad4: MPM background grids only
+// quad4: MPM background grids only. stencil3/stencil4: the node stencils of integration domains that no
+// single cell owns (edge-based smoothing domains, engine/store/edges.hpp); they are never output as cells.
+enum class CellType { tri3, tri6, quad4, stencil3, stencil4 };
 
 // Element formulation of a cell block: what the assembly computes on its cells.
 //  p1:        linear displacement triangle (tri3, one point);
@@ -21,7 +23,10 @@ enum class CellType { tri3, tri6, quad4 };  // quad4: MPM background grids only
 //             pressure projection (tri3, three points; seed 000 §4.2);
 //  p1p1_up:   mixed linear displacement / linear pressure on an MPM background grid, material points as
 //             quadrature points (seed 003 eqs 16-26).
-enum class Formulation { p1, tri6, p1p1_uphi, p1p1_up };
+//  es_up, es_u: edge-based smoothed linear triangles (seed 001 §3): integrated over the smoothing domain of
+//             each edge, mixed u-p (nodal pressure, PPP with alpha_stab) or displacement only;
+//  fem_up, fem_u: the same kernels integrated over each triangle (the seed's FEM-UP and FEM-U).
+enum class Formulation { p1, tri6, p1p1_uphi, p1p1_up, es_up, es_u, fem_up, fem_u };
 
 inline const char* formulation_name(Formulation f) {
   switch (f) {
@@ -29,16 +34,37 @@ inline const char* formulation_name(Formulation f) {
     case Formulation::tri6: return "tri6";
     case Formulation::p1p1_uphi: return "p1p1_uphi";
     case Formulation::p1p1_up: return "p1p1_up";
+    case Formulation::es_up: return "es_up";
+    case Formulation::es_u: return "es_u";
+    case Formulation::fem_up: return "fem_up";
+    case Formulation::fem_u: return "fem_u";
   }
   return "?";
 }
 
 
-inline int nodes_per_cell(CellType t) { return t == CellType::tri3 ? 3 : t == CellType::quad4 ? 4 : 6; }
+inline int nodes_per_cell(CellType t) {
+  switch (t) {
+    case CellType::tri3: case CellType::stencil3: return 3;
+    case CellType::quad4: case CellType::stencil4: return 4;
+    case CellType::tri6: return 6;
+  }
+  return 0;
+}
 inline CellType cell_type_of(Formulation f) { return f == Formulation::tri6 ? CellType::tri6 : CellType::tri3; }
 // Formulations with the nodal dilatation phi as an unknown.
 inline bool has_dilatation(Formulation f) { return f == Formulation::p1p1_uphi; }
-inline const char* cell_type_name(CellType t) { return t == CellType::tri3 ? "tri3" : t == CellType::quad4 ? "quad4" : "tri6"; }
+// Formulations with the nodal pressure p as an unknown on a mesh (seed 001 eq 25: sigma = dev sigma + p I).
+inline bool has_pressure(Formulation f) { return f == Formulation::es_up || f == Formulation::fem_up; }
+// Formulations integrated over domains of the Edges store (seed 001): edges or, for fem_*, whole triangles.
+inline bool integrates_on_domains(Formulation f) {
+  return f == Formulation::es_up || f == Formulation::es_u || f == Formulation::fem_up || f == Formulation::fem_u;
+}
+inline bool edge_smoothed(Formulation f) { return f == Formulation::es_up || f == Formulation::es_u; }
+inline const char* cell_type_name(CellType t) {
+  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4"};
+  return names[int(t)];
+}
 
 struct Cells {
   CellType type = CellType::tri3;

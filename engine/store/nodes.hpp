@@ -25,6 +25,7 @@ struct Nodes {
   // MPM background grids (seed 003 Algorithm 1): u is the displacement of the step (the grid starts
   // undeformed), v_n and a_n the projected particle velocity and acceleration, lumped_mass the projected mass.
   Column<double> p;            // pressure iterate (mixed u-p), sigma = sigma_dev + p I
+  Column<double> p_n;          // converged pressure (mixed u-p on a mesh: a nodal unknown that persists)
   Column<Vec<D>> proj_u;       // OSGS projections of the momentum and pressure residuals (seed 003 §5)
   Column<double> proj_p;
   Column<double> lumped_volume;  // OSGS: sum_p N_I V_p^n, the lumped matrix of the L2 projection
@@ -40,7 +41,7 @@ struct Nodes {
   template <class Visit>
   void for_each_column(Visit&& f) {
     f("X", X), f("u", u), f("u_n", u_n), f("v", v), f("v_n", v_n), f("a", a), f("a_n", a_n),
-        f("lumped_mass", lumped_mass), f("phi", phi), f("phi_n", phi_n), f("p", p), f("proj_u", proj_u), f("proj_p", proj_p),
+        f("lumped_mass", lumped_mass), f("phi", phi), f("phi_n", phi_n), f("p", p), f("p_n", p_n), f("proj_u", proj_u), f("proj_p", proj_p),
         f("lumped_volume", lumped_volume);
   }
   template <class Visit>

@@ -19,6 +19,9 @@ struct QuadPoints {
   Column<double> dN;        // shape gradients dN^A/dX_n, nodes_per_cell * D per point, 1/L
   Column<Mat3> F_n;         // converged total deformation gradient (history)
   Column<Mat3> F;           // deformation gradient at the current iterate
+  // Converged Cauchy stress, kept where the stress is not a function of F (history materials; seed 001's
+  // triangles carry the mean of their smoothing domains' stress). Unused otherwise.
+  Column<Mat3> stress_n;
 
   QuadPoints() {
     weight_n.use();
@@ -34,6 +37,7 @@ struct QuadPoints {
     dN.resize_strided(n, nodes_per_cell * D, 0.0);
     F_n.resize(n, Mat3::Identity());
     F.resize(n, Mat3::Identity());
+    stress_n.resize(n, Mat3::Zero());
   }
 
   double* grad(Index q) { return dN.data() + static_cast<std::size_t>(q) * nodes_per_cell * D; }
@@ -41,7 +45,7 @@ struct QuadPoints {
 
   template <class Visit>
   void for_each_column(Visit&& f) {
-    f("weight_n", weight_n), f("dN", dN), f("F_n", F_n), f("F", F);
+    f("weight_n", weight_n), f("dN", dN), f("F_n", F_n), f("F", F), f("stress_n", stress_n);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

@@ -4,7 +4,8 @@
 // Residual on all dofs: r = f_int + M a - f_ext (on prescribed dofs this is the reaction). While a
 // prescribed dof lags its target g (first iteration of a step), the free rows also get K_fp (g - u_p),
 // so that one Newton step applies the prescribed increment consistently (no artificial spike).
-// Cells are visited colour by colour, the cells of a colour in parallel: the result is independent of
+// Blocks of seed 001's formulations (es_up, es_u, fem_up, fem_u) are integrated over `domains`
+// (assemble_domains.hpp); their triangles add only the pressure terms. Cells are visited colour by colour, the cells of a colour in parallel: the result is independent of
 // the thread count.
 #pragma once
 
@@ -14,6 +15,7 @@
 #include "engine/linalg/linear_system.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
+#include "engine/store/edges.hpp"
 #include "engine/store/nodes.hpp"
 #include "engine/store/quad_points.hpp"
 #include "systems/assemble/materials/material.hpp"
@@ -29,6 +31,6 @@ struct AssemblyResult {
 AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const std::vector<BodyMaterial>& materials,
                                const Nodes<2>& nodes, const std::vector<Cells>& cells,
                                const BoundaryConditions<2>& bc, std::vector<QuadPoints<2>>& quad,
-                               LinearSystem& system);
+                               LinearSystem& system, std::vector<Edges<2>>* domains = nullptr);
 
 }  // namespace loom

@@ -11,8 +11,11 @@ namespace loom {
 void allocate_quad_points(const std::vector<Cells>& cells, std::vector<QuadPoints<2>>& quad) {
   quad.resize(cells.size());
   for (std::size_t b = 0; b < cells.size(); ++b) {
-    // p1: one point; tri6 and p1p1_uphi: the three-point rule (seed 000 Fig 5).
-    quad[b].per_cell = cells[b].formulation == Formulation::p1 ? 1 : 3;
+    // p1: one point; tri6 and p1p1_uphi: the three-point rule (seed 000 Fig 5). Seed 001's formulations
+    // integrate on their domains; the one point of a triangle carries its P1 F and stored stress for output.
+    const Formulation f = cells[b].formulation;
+    quad[b].per_cell = f == Formulation::p1 || integrates_on_domains(f) ? 1 : 3;
+    quad[b].stress_n.use(integrates_on_domains(f));
     quad[b].nodes_per_cell = cells[b].stride;
     quad[b].resize(cells[b].size() * quad[b].per_cell);
   }

@@ -26,7 +26,7 @@ double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, In
   double p = 0.0;
   for (int q = 0; q < quad.per_cell; ++q) {
     Mat3 sigma;
-    if (!cauchy_stress(material.model, quad.F_n[cell * quad.per_cell + q], sigma)) return kNaN;
+    if (!point_stress(material, quad, cell * quad.per_cell + q, sigma)) return kNaN;
     p -= sigma.trace() / 3.0;
   }
   return p / quad.per_cell;
@@ -145,7 +145,7 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
           const BodyMaterial& m = materials[std::size_t(cells[std::size_t(s.block)].body[s.cell])];
           for (int i = 0; i < q.per_cell; ++i) {
             Mat3 sigma;
-            if (!cauchy_stress(m.model, q.F_n[s.cell * q.per_cell + i], sigma)) sigma.setConstant(kNaN);
+            if (!point_stress(m, q, s.cell * q.per_cell + i, sigma)) sigma.setConstant(kNaN);
             const double w = q.per_cell == 1 ? 1.0 : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
             mean += w * sigma / double(plan.samples[k].size());
           }

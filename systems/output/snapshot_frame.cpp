@@ -55,7 +55,7 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
       for (int q = 0; q < qb.per_cell; ++q) {
         const Mat3& F = qb.F_n[c * qb.per_cell + q];
         Mat3 sigma = Mat3::Constant(kNaN);
-        cauchy_stress(materials[std::size_t(cb.body[c])].model, F, sigma);
+        point_stress(materials[std::size_t(cb.body[c])], qb, c * qb.per_cell + q, sigma);
         sigma_mean += sigma / qb.per_cell;
         J_mean += F.determinant() / qb.per_cell;
       }

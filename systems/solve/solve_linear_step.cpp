@@ -6,8 +6,8 @@
 
 namespace loom {
 
-LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers) {
-  {
+LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers, bool refactorize) {
+  if (refactorize) {
     ScopedTimer t(timers, "newton/solve/factorize");
     if (system.dofs.n_free > 0 && !solver.factorize(system.pattern)) return LinearSolveStatus::singular;
   }
@@ -22,8 +22,8 @@ LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Tim
 }
 
 LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
-                                    LinearSystem& system, Timers& timers) {
-  if (solve_free_dofs(solver, system, timers) != LinearSolveStatus::ok) return LinearSolveStatus::singular;
+                                    LinearSystem& system, Timers& timers, bool refactorize) {
+  if (solve_free_dofs(solver, system, timers, refactorize) != LinearSolveStatus::ok) return LinearSolveStatus::singular;
   const DofMap& dofs = system.dofs;
   for_each_index(dofs.n_dofs(), [&](Index dof) {
     switch (dofs.kind[std::size_t(dof)]) {

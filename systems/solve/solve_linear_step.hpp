@@ -14,9 +14,10 @@ enum class LinearSolveStatus { ok, singular };
 
 // Factorizes the assembled tangent and solves K du = -r for the free dofs into system.increment (timed as
 // newton/solve/factorize and newton/solve/back_substitute); shared by the fem/pfem and mpm steps.
-LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers);
+// refactorize = false reuses the factorisation of the last call (a tangent frozen for the step).
+LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers, bool refactorize = true);
 
 LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
-                                    LinearSystem& system, Timers& timers);
+                                    LinearSystem& system, Timers& timers, bool refactorize = true);
 
 }  // namespace loom

@@ -3,14 +3,34 @@
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
 #include "systems/assemble/compute_geometry.hpp"
+#include "systems/assemble/elements/displacement_point.hpp"
+#include "systems/update/time_integrator.hpp"
 
 namespace loom {
 
 void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes,
                  std::vector<QuadPoints<2>>& quad) {
+  // Triangles of seed 001's formulations are integrated on their domains (commit_domains); their one point
+  // carries the triangle's P1 deformation gradient for output, advanced here while u_n is the old one.
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    if (!integrates_on_domains(cells[b].formulation)) continue;
+    QuadPoints<2>& q = quad[b];
+    for_each_index(cells[b].size(), [&](Index c) {
+      NodalVectors<3> du;
+      for (int a = 0; a < 3; ++a) du.row(a) = (nodes.u[cells[b].node(c, a)] - nodes.u_n[cells[b].node(c, a)]).transpose();
+      q.F[c] = deformation_gradient<3>(du, Eigen::Map<const NodalVectors<3>>(q.grad(c)), q.F_n[c]);
+    });
+  }
   const bool dynamic = nodes.v.used();
+  const TimeIntegrator integrator = time_integrator_of(ctx.scene->time, ctx.dt);
   for_each_index(nodes.size(), [&](Index i) {
-    if (dynamic) {
+    if (dynamic && integrator.second_order()) {
+      const Vec2 du = nodes.u[i] - nodes.u_n[i];
+      nodes.a[i] = integrator.acceleration(du, nodes.v_n[i], nodes.a_n[i]);
+      nodes.v[i] = integrator.velocity(du, nodes.v_n[i], nodes.a_n[i], nodes.a[i]);
+      nodes.a_n[i] = nodes.a[i];
+      nodes.v_n[i] = nodes.v[i];
+    } else if (dynamic) {
       const Vec2 v = (nodes.u[i] - nodes.u_n[i]) / ctx.dt;
       nodes.a[i] = (v - nodes.v_n[i]) / ctx.dt;
       nodes.v[i] = v;
@@ -19,6 +39,7 @@ void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<
     }
     nodes.u_n[i] = nodes.u[i];
     if (nodes.phi.used()) nodes.phi_n[i] = nodes.phi[i];
+    if (nodes.p_n.used()) nodes.p_n[i] = nodes.p[i];
   });
   for (auto& q : quad) for_each_index(q.size(), [&](Index p) { q.F_n[p] = q.F[p]; });
   const Index bad = compute_geometry(nodes, cells, quad);

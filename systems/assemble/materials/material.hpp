@@ -8,19 +8,22 @@
 #include <vector>
 
 #include "engine/scene/scene_spec.hpp"
+#include "engine/store/quad_points.hpp"
+#include "systems/assemble/materials/hencky_perzyna.hpp"
 #include "systems/assemble/materials/linear_elastic.hpp"
 #include "systems/assemble/materials/neo_hooke.hpp"
 #include "systems/assemble/materials/neo_hooke_split.hpp"
 
 namespace loom {
 
-using Material = std::variant<NeoHooke, LinearElastic, NeoHookeSplit>;
+using Material = std::variant<NeoHooke, LinearElastic, NeoHookeSplit, HenckyPerzyna>;
 
 inline Material make_material(const MaterialSpec& m) {
   switch (m.model) {
     case MaterialModel::neo_hooke: return NeoHooke{m.lambda, m.mu};
     case MaterialModel::linear_elastic: return LinearElastic{m.lambda, m.mu};
     case MaterialModel::neo_hooke_split: return NeoHookeSplit{m.mu, std::isinf(m.K) ? 0.0 : 1.0 / m.K};
+    case MaterialModel::hencky_perzyna: return HenckyPerzyna{m.K, m.G, m.tau0, m.viscosity};
   }
   return NeoHooke{m.lambda, m.mu};
 }
@@ -29,7 +32,10 @@ inline Material make_material(const MaterialSpec& m) {
 struct BodyMaterial {
   Material model;
   double density = 0.0;       // rho_0
-  double alpha_over_G = 0.0;  // PPP stabilisation alpha_s / G of mixed u-phi elements (seed 000 eq 30)
+  // PPP stabilisation: alpha_s / G of mixed u-phi elements (seed 000 eq 30, dimensionless), alpha_stab / G of
+  // es_up and fem_up (seed 001 eq 48, 1 / stress: it multiplies the pressure).
+  double alpha_over_G = 0.0;
+  double inverse_bulk = 0.0;  // 1 / K: the pressure's own term of the u-p constraint (seed 001 eq 42)
 };
 
 // Indexed like SceneSpec::bodies.
@@ -37,7 +43,8 @@ inline std::vector<BodyMaterial> body_materials(const SceneSpec& scene) {
   std::vector<BodyMaterial> r;
   for (const auto& b : scene.bodies) {
     const auto& m = scene.materials[std::size_t(b.material)];
-    r.push_back({make_material(m), m.density, b.alpha_s / m.G});
+    const double alpha = has_pressure(b.element) ? b.alpha_stab : b.alpha_s;
+    r.push_back({make_material(m), m.density, alpha / m.G, std::isinf(m.K) ? 0.0 : 1.0 / m.K});
   }
   return r;
 }
@@ -54,6 +61,16 @@ inline bool cauchy_stress(const Material& material, const Mat3& F, Mat3& sigma) 
         return true;
       },
       material);
+}
+
+// Cauchy stress of quadrature point q: stored at commit by formulations whose materials carry history
+// (stress_n), recomputed from F_n otherwise.
+inline bool point_stress(const BodyMaterial& material, const QuadPoints<2>& quad, Index q, Mat3& sigma) {
+  if (quad.stress_n.used()) {
+    sigma = quad.stress_n[q];
+    return true;
+  }
+  return cauchy_stress(material.model, quad.F_n[q], sigma);
 }
 
 }  // namespace loom

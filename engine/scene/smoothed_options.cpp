@@ -1,0 +1,41 @@
+#include "engine/scene/smoothed_options.hpp"
+
+#include <cmath>
+
+namespace loom {
+
+void read_hencky_perzyna(MaterialSpec& m, const TableReader& t) {
+  const bool hp = m.model == MaterialModel::hencky_perzyna;
+  for (const char* k : {"tau0", "viscosity"})
+    if (t.has(k) && !hp) t.error(k, std::string(k) + " is used by model = \"hencky_perzyna\" only");
+  if (!hp) return;
+  if (t.has("tau0")) m.tau0 = t.real("tau0");
+  m.viscosity = t.real("viscosity");
+}
+
+void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
+  const char* element = formulation_name(b.element);
+  if (has_pressure(b.element)) {
+    if (!t.has("alpha_stab"))
+      t.error("element", std::string(element) + " needs alpha_stab, the dimensionless PPP factor of its pressure (0: unstabilised; the "
+                                                 "seed uses 0.5 for Cook's membrane and 200 for the flows)");
+    else b.alpha_stab = t.real("alpha_stab");
+  } else if (t.has("alpha_stab")) {
+    t.error("alpha_stab", "alpha_stab is used by element = \"es_up\" or \"fem_up\" only");
+  }
+  if (b.material == kNoIndex) return;
+  const MaterialSpec& m = s.materials[std::size_t(b.material)];
+  if (integrates_on_domains(b.element)) {
+    if (m.model != MaterialModel::hencky_perzyna && m.model != MaterialModel::linear_elastic)
+      t.error("element", std::string(element) + " takes model = \"hencky_perzyna\" (finite strain, with history) or \"linear_elastic\" "
+                                                "(geometrically linear); material \"" + m.name + "\" is another model");
+    if (s.scene.method != Method::fem)
+      t.error("element", std::string(element) + " runs on a fixed mesh (method = \"fem\") for now; method " + method_name(s.scene.method) +
+                             " takes other elements");
+  } else if (std::isfinite(m.tau0)) {
+    t.error("material", "material \"" + m.name + "\" yields (tau0): viscoplasticity needs an element that carries history (es_up, es_u, "
+                        "fem_up, fem_u), not " + element);
+  }
+}
+
+}  // namespace loom

@@ -1,0 +1,30 @@
+#include "systems/update/commit_domains.hpp"
+
+#include "engine/core/errors.hpp"
+#include "engine/core/parallel.hpp"
+#include "systems/assemble/smoothing_geometry.hpp"
+
+namespace loom {
+
+void domain_stress_to_cells(const std::vector<Edges<2>>& edges, std::vector<QuadPoints<2>>& quad) {
+  for (const Edges<2>& e : edges) std::fill(quad[std::size_t(e.cell_block)].stress_n.begin(), quad[std::size_t(e.cell_block)].stress_n.end(), Mat3::Zero());
+  // Serial: a triangle gathers from up to three domains of two stores; this runs once per step.
+  for (const Edges<2>& e : edges) {
+    QuadPoints<2>& q = quad[std::size_t(e.cell_block)];
+    const double share = e.whole_triangles ? 1.0 : 1.0 / 3.0;  // every triangle has three edges
+    for (Index k = 0; k < e.size(); ++k)
+      for (int j = 0; j < 2; ++j)
+        if (const Index t = e.triangles[2 * k + j]; t != kNoIndex) q.stress_n[t] += share * e.stress[k];
+  }
+}
+
+void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, const Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
+                    std::vector<Edges<2>>& edges) {
+  for (Edges<2>& e : edges) for_each_index(e.size(), [&](Index k) { e.be_n[k] = e.be[k]; });
+  domain_stress_to_cells(edges, quad);
+  Index bad = 0;
+  for (Edges<2>& e : edges) bad += compute_smoothing_geometry(nodes, cells[std::size_t(e.cell_block)], e);
+  LOOM_CHECK(bad == 0, RunError, bad << " smoothing domains are inverted in the converged configuration of step " << ctx.step);
+}
+
+}  // namespace loom

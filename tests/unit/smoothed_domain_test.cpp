@@ -1,0 +1,132 @@
+// The integration-domain kernel of seed 001 (systems/assemble/elements/smoothed_domain.hpp): its tangent
+// against central finite differences of its residual at random states (edge stencils of 4 and 3 nodes,
+// mixed u-p and displacement only, Hencky elastic and viscoplastic with a random history, small-strain
+// Hooke), the pressure residual against its closed form, and the triangle's pressure terms.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "systems/assemble/elements/smoothed_domain.hpp"
+
+namespace loom {
+namespace {
+
+template <int NEN>
+SmoothedDomain<NEN> random_domain(std::mt19937& rng, double strain) {
+  std::normal_distribution<double> normal;
+  SmoothedDomain<NEN> d;
+  // Gradients of a linear-complete stencil: sum b = 0 (any values would do for the derivative check).
+  for (int a = 0; a < NEN; ++a)
+    for (int i = 0; i < 2; ++i) d.b(a, i) = normal(rng);
+  d.b.row(NEN - 1) = -d.b.topRows(NEN - 1).colwise().sum();
+  for (int a = 0; a < NEN; ++a) {
+    d.du.row(a) = strain * Vec2(normal(rng), normal(rng)).transpose();
+    d.p[a] = 0.3 * normal(rng);
+    d.Np[a] = a < 2 ? 0.5 : 0.0;
+  }
+  d.V_n = 0.7;
+  Mat3 X = Mat3::Zero();
+  X.topLeftCorner<2, 2>() << 0.2 * normal(rng), 0.2 * normal(rng), 0.2 * normal(rng), 0.2 * normal(rng);
+  d.be_n = Mat3::Identity() + X * X.transpose();
+  d.be_n(2, 2) = 1.05;
+  d.dt = 0.1;
+  return d;
+}
+
+template <int NEN, bool Mixed, class MaterialT>
+void check_tangent(const MaterialT& m, const SmoothedDomain<NEN>& d0, double tol, bool* plastic = nullptr) {
+  using L = SmoothedLayout<NEN, Mixed>;
+  typename L::Vector r0 = L::Vector::Zero();
+  typename L::Matrix K = L::Matrix::Zero();
+  SmoothedDomainState st;
+  ASSERT_TRUE((smoothed_domain<NEN, Mixed>(m, d0, r0, &K, st)));
+  if constexpr (std::is_same_v<MaterialT, HenckyPerzyna>) {
+    if (plastic) {
+      HistoryResponse h;
+      Mat3 f = Mat3::Identity();
+      f.topLeftCorner<2, 2>() += d0.du.transpose() * d0.b;
+      m.update(f, d0.be_n, d0.dt, Mixed, false, h);
+      *plastic = h.plastic;
+    }
+  }
+  const double h = 1e-6;
+  typename L::Matrix fd;
+  for (int k = 0; k < L::size; ++k) {
+    SmoothedDomain<NEN> dp = d0, dm = d0;
+    const int a = k / L::per_node, c = k % L::per_node;
+    if (c < 2) dp.du(a, c) += h, dm.du(a, c) -= h;
+    else dp.p[a] += h, dm.p[a] -= h;
+    typename L::Vector rp = L::Vector::Zero(), rm = L::Vector::Zero();
+    SmoothedDomainState s;
+    ASSERT_TRUE((smoothed_domain<NEN, Mixed>(m, dp, rp, nullptr, s)));
+    ASSERT_TRUE((smoothed_domain<NEN, Mixed>(m, dm, rm, nullptr, s)));
+    fd.col(k) = (rp - rm) / (2 * h);
+  }
+  EXPECT_LT((K - fd).cwiseAbs().maxCoeff(), tol * (1.0 + K.cwiseAbs().maxCoeff())) << "K\n" << K << "\nfd\n" << fd;
+  // The residual without the tangent is the same.
+  typename L::Vector r1 = L::Vector::Zero();
+  ASSERT_TRUE((smoothed_domain<NEN, Mixed>(m, d0, r1, nullptr, st)));
+  EXPECT_LT((r1 - r0).norm(), 1e-14 * (1.0 + r0.norm()));
+}
+
+TEST(SmoothedDomain, TangentMatchesFiniteDifferencesHencky) {
+  std::mt19937 rng(7);
+  int plastic = 0;
+  for (int trial = 0; trial < 6; ++trial)
+    for (const double tau0 : {0.05, 1e300}) {
+      const HenckyPerzyna m{7.0, 3.0, tau0, 0.5};
+      bool pl = false;
+      check_tangent<4, true>(m, random_domain<4>(rng, 0.1), 1e-7, &pl);
+      plastic += pl;
+      check_tangent<3, true>(m, random_domain<3>(rng, 0.1), 1e-7);
+      check_tangent<4, false>(m, random_domain<4>(rng, 0.1), 1e-7);
+      check_tangent<3, false>(m, random_domain<3>(rng, 0.1), 1e-7);
+    }
+  EXPECT_GE(plastic, 4);  // the plastic branch was exercised
+}
+
+TEST(SmoothedDomain, TangentMatchesFiniteDifferencesSmallStrain) {
+  std::mt19937 rng(3);
+  const LinearElastic m{4.0, 1.5};
+  for (int trial = 0; trial < 3; ++trial) {
+    check_tangent<4, true>(m, random_domain<4>(rng, 0.1), 1e-8);
+    check_tangent<3, false>(m, random_domain<3>(rng, 0.1), 1e-8);
+  }
+}
+
+// R_p = N_p ln J / J V_0 with J = det f J_n, V_0 = V_n / J_n (seed 001 eq 41), and the stress of the domain is
+// tau' / J + p I with p the pressure at the edge's midpoint.
+TEST(SmoothedDomain, PressureResidualAndStress) {
+  std::mt19937 rng(11);
+  const HenckyPerzyna m{7.0, 3.0};
+  const SmoothedDomain<4> d = random_domain<4>(rng, 0.1);
+  SmoothedLayout<4, true>::Vector r = SmoothedLayout<4, true>::Vector::Zero();
+  SmoothedDomainState st;
+  ASSERT_TRUE((smoothed_domain<4, true>(m, d, r, nullptr, st)));
+  Mat3 f = Mat3::Identity();
+  f.topLeftCorner<2, 2>() += d.du.transpose() * d.b;
+  const double J_n = std::sqrt(d.be_n.determinant()), J = f.determinant() * J_n;
+  for (int a = 0; a < 4; ++a) EXPECT_NEAR(r[3 * a + 2], d.Np[a] * std::log(J) / J * d.V_n / J_n, 1e-14);
+  const double p = 0.5 * (d.p[0] + d.p[1]);
+  EXPECT_NEAR(st.sigma.trace() / 3.0, p, 1e-12);  // tau' is deviatoric
+  EXPECT_NEAR(st.j, f.determinant(), 1e-15);
+  EXPECT_NEAR(std::sqrt(st.be.determinant()), J, 1e-12);
+}
+
+TEST(TrianglePressureTerms, MassAndProjectionMatrices) {
+  const double A0 = 0.6, inv_K = 0.25, a_over_G = 2.0;
+  Mat3 K = Mat3::Zero();
+  Vec3 r = Vec3::Zero();
+  const Vec3 p(1.0, 1.0, 1.0);  // constant pressure: the projection term vanishes
+  triangle_pressure_terms(A0, inv_K, a_over_G, p, r, &K);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(r[a], -inv_K * A0 / 3.0, 1e-15);
+  EXPECT_LT((K - K.transpose()).norm(), 1e-15);
+  Mat3 K_stab = Mat3::Zero();
+  Vec3 r_stab = Vec3::Zero();
+  triangle_pressure_terms(A0, 0.0, a_over_G, Vec3(0.3, -1.0, 2.0), r_stab, &K_stab);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(K_stab.row(a).sum(), 0.0, 1e-15);
+  EXPECT_LT(Eigen::SelfAdjointEigenSolver<Mat3>(K_stab).eigenvalues().maxCoeff(), 1e-15);  // -K_stab is positive semi-definite
+}
+
+}  // namespace
+}  // namespace loom
