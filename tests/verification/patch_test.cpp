@@ -8,6 +8,10 @@
 //  - p1p1_uphi: phi = J (uniform) makes F~ = F, and the dilatation residual -int N^A J + K_phiphi^AB phi^B
 //    vanishes: sum_B M^AB = m^A and, the P1 m^B being all equal to A/3, the projection term
 //    sum_B (M^AB - m^B/3) J = (m^A - A/3) J = 0. So the nodal phi must come out equal to det F.
+//  - es_up, es_u, fem_up, fem_u (seed 001): the smoothed gradients are linearly complete (sum_I x_I (x) b~_I
+//    = I), so every domain sees the same f and stress; the domain forces sum to P oint N^A N dS as for p1
+//    (the domains tile the body). The u-p constraint holds with the uniform p = K ln J / J (Hencky) or
+//    K tr eps (linear), and the PPP term vanishes on a constant pressure.
 //
 // Reactions (the issue's "reaction force to 1e-8 relative against the analytic value"): for a constant P the
 // nodal internal force is f^A = P int grad N^A dV = P oint N^A N dS (divergence theorem; interior edges
@@ -32,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include <unsupported/Eigen/MatrixFunctions>
+
 #include "engine/methods/build_mesh.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -40,7 +46,7 @@ namespace {
 
 struct PatchCase {
   std::string model;    // neo_hooke | linear_elastic
-  std::string element;  // p1 | tri6 | p1p1_uphi
+  std::string element;  // p1 | tri6 | p1p1_uphi | es_up | es_u | fem_up | fem_u
   Eigen::Matrix2d F;    // final deformation gradient (in-plane); F33 = 1
   int steps = 1;
   std::string pattern;
@@ -70,6 +76,7 @@ std::string scene_text(const PatchCase& c) {
   s += "[solver]\nresidual_relative = 1e-13\nresidual_absolute = 1e-14\n";
   s += "[[material]]\nname = \"m\"\nmodel = \"" + c.model + "\"\nE = 10.0\nnu = 0.3\n";
   s += "[[body]]\nname = \"patch\"\nmaterial = \"m\"\nelement = \"" + c.element + "\"\n";
+  if (c.element == "es_up" || c.element == "fem_up") s += "alpha_stab = 0.5\n";
   s += "mesh = { generator = \"rectangle\", origin = [0.5, -0.25], size = [2.0, 1.0], divisions = [6, 4], pattern = \"" +
        c.pattern + "\", distortion = 0.25, seed = 11 }\n";
   s += "[[boundary]]\nname = \"left\"\n" + box(kX0, kY0, kX0, y1) + disp;
@@ -90,6 +97,15 @@ bool on_outline(const Vec2& X) {
 // First Piola-Kirchhoff stress of the in-plane F (F33 = 1) in closed form.
 Eigen::Matrix2d analytic_P(const std::string& model, const Eigen::Matrix2d& F) {
   const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu));
+  if (model == "hencky_perzyna") {
+    // Hencky: tau = 2 mu dev ln V + K tr(ln V) I, ln V = log(F F^T) / 2 (matrix logarithm), P = tau F^-T.
+    const double K = lambda + 2.0 * mu / 3.0;
+    Mat3 F3 = Mat3::Identity();
+    F3.topLeftCorner<2, 2>() = F;
+    const Mat3 lnV = 0.5 * Mat3(F3 * F3.transpose()).log();
+    const Mat3 tau = 2.0 * mu * (lnV - lnV.trace() / 3.0 * Mat3::Identity()) + K * lnV.trace() * Mat3::Identity();
+    return Mat3(tau * F3.inverse().transpose()).topLeftCorner<2, 2>();
+  }
   if (model == "neo_hooke") {
     // F = diag(F_2d, 1): J = det F_2d and F^-T is block diagonal (seed 000 eq 51).
     return mu * F + (lambda * std::log(F.determinant()) - mu) * F.inverse().transpose();
@@ -162,6 +178,16 @@ void run_patch(const PatchCase& c) {
     for (Index p = 0; p < q.size(); ++p) max_F_error = std::max(max_F_error, (q.F_n[p] - F_exact).cwiseAbs().maxCoeff());
   EXPECT_LE(max_F_error, 1e-10);
 
+  // es_up, fem_up: the nodal pressure is the uniform Cauchy mean stress of the material.
+  if (c.element == "es_up" || c.element == "fem_up") {
+    ASSERT_TRUE(nodes.p_n.used());
+    const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu)), K = lambda + 2.0 * mu / 3.0;
+    const double J = c.F.determinant();
+    const double p_exact = c.model == "linear_elastic" ? K * (c.F.trace() - 2.0) : K * std::log(J) / J;
+    double max_p_error = 0.0;
+    for (Index i = 0; i < nodes.size(); ++i) max_p_error = std::max(max_p_error, std::abs(nodes.p_n[i] - p_exact));
+    EXPECT_LE(max_p_error, 1e-10 * (1.0 + std::abs(p_exact))) << "p exact " << p_exact;
+  }
   // p1p1_uphi: the nodal dilatation is det F everywhere (1e-10: the same round-off budget as u).
   double max_phi_error = 0.0;
   if (c.element == "p1p1_uphi") {
@@ -206,6 +232,23 @@ TEST(PatchTest, NeoHookeReproducesAFiniteAffineDeformationOverSeveralSteps) {
   F << 1.3, 0.2, -0.1, 0.9;
   for (const char* element : {"p1", "tri6", "p1p1_uphi"})
     for (const char* pattern : {"right", "alternating", "shifted"}) run_patch({"neo_hooke", element, F, 4, pattern});
+}
+
+}  // namespace
+}  // namespace loom
+
+namespace loom {
+namespace {
+
+TEST(PatchTest, SmoothedFormulationsReproduceAffineFields) {
+  Eigen::Matrix2d small, finite;
+  small << 1.0 + 2e-3, 1.5e-3, -0.5e-3, 1.0 - 1e-3;
+  finite << 1.3, 0.2, -0.1, 0.9;
+  for (const char* element : {"es_up", "es_u", "fem_up", "fem_u"})
+    for (const char* pattern : {"right", "shifted"}) {
+      run_patch({"linear_elastic", element, small, 1, pattern});
+      run_patch({"hencky_perzyna", element, finite, 4, pattern});
+    }
 }
 
 }  // namespace

@@ -1,0 +1,71 @@
+// Planar Bingham Poiseuille flow (scenes/bingham_poiseuille.toml; Reinold & Meschke 2021 §4.3): the
+// velocity profile u / dt of the one-step steady state against the closed form (REFERENCES: Bingham plane
+// Poiseuille), for tau0 = 20, 50, 80 Pa, with element es_up and hencky_perzyna, and the plug width
+// against tau0 / F_x.
+// Expected accuracy: the readings of the scene (G = 1e9 Pa, dt = 1e-4 s) leave an elastic part of about
+// tau / (G dt v) = 1e-4 and a finite-strain part below 4e-4; the P1 profile is exact at the nodes of a 1D
+// two-point problem up to the kink at the plug edge. Observed: 0.012-0.015 % at the centre (the issue asks
+// for 0.5 %). Plug: rows of the mesh whose shear rate is below 0.1 1/s (200 1/s at the wall, 5e-4 1/s of
+// elastic shear inside the plug, 1 1/s in a whole row just outside it); the
+// detected half-width must be within one element (1 mm) of y0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "engine/scene/scene_loader.hpp"
+#include "tests/verification/verification_support.hpp"
+
+namespace loom {
+namespace {
+
+constexpr double kFx = 2e4, kMu = 10.0, kH = 0.1, kDt = 1e-4, kRow = 1e-3;
+
+double exact_velocity(double y, double tau0) {
+  const double y0 = tau0 / kFx, a = std::max(std::abs(y), y0);
+  return kFx / (2 * kMu) * (kH * kH - a * a) - tau0 / kMu * (kH - a);
+}
+
+class BinghamPoiseuille : public ::testing::TestWithParam<double> {};
+
+TEST_P(BinghamPoiseuille, VelocityProfileAndPlugMatchTheClosedForm) {
+  const double tau0 = GetParam();
+  const SceneSpec scene = load_scene(verification::scene_path("bingham_poiseuille.toml"),
+                                     {"material[0].tau0=" + std::to_string(tau0), "output.every=0"});
+  auto run = testing::make_fem_run(scene);
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const Nodes<2>& nodes = run->nodes();
+  const double v_plug = exact_velocity(0.0, tau0);
+  double worst = 0.0, v_centre = 0.0;
+  // Nodes of the column x = 0, by row: the shear rate of each row interval.
+  std::vector<std::pair<double, double>> column;  // (y, v)
+  for (Index i = 0; i < nodes.size(); ++i) {
+    const double y = nodes.X[i].y(), v = nodes.u_n[i].x() / kDt;
+    worst = std::max(worst, std::abs(v - exact_velocity(y, tau0)) / v_plug);
+    EXPECT_NEAR(nodes.u_n[i].y(), 0.0, 1e-15);
+    if (std::abs(y) < 1e-12) v_centre = v;
+    if (std::abs(nodes.X[i].x()) < 1e-12) column.emplace_back(y, v);
+  }
+  std::sort(column.begin(), column.end());
+  double plug_low = 1.0, plug_high = -1.0;
+  for (std::size_t k = 0; k + 1 < column.size(); ++k) {
+    const double rate = std::abs(column[k + 1].second - column[k].second) / (column[k + 1].first - column[k].first);
+    if (rate < 0.1) plug_low = std::min(plug_low, column[k].first), plug_high = std::max(plug_high, column[k + 1].first);
+  }
+  const double half_width = 0.5 * (plug_high - plug_low), y0 = tau0 / kFx;
+  std::printf("[poiseuille] tau0 %g: v_centre %.5f (exact %.5f, %.3f %%), worst node %.3f %% of v_plug, plug half-width %.1f mm "
+              "(y0 = %.1f mm), %lld Newton iterations\n",
+              tau0, v_centre, v_plug, 100 * std::abs(v_centre / v_plug - 1), 100 * worst, 1e3 * half_width, 1e3 * y0,
+              summary.newton_iterations);
+  EXPECT_LT(worst, 5e-3);
+  EXPECT_NEAR(v_centre, v_plug, 1e-3 * v_plug);
+  ASSERT_LT(plug_low, plug_high) << "no plug found";
+  EXPECT_NEAR(half_width, y0, kRow + 1e-12);
+  EXPECT_NEAR(plug_low + plug_high, 0.0, 1e-12);  // symmetric
+}
+
+INSTANTIATE_TEST_SUITE_P(YieldStresses, BinghamPoiseuille, ::testing::Values(20.0, 50.0, 80.0));
+
+}  // namespace
+}  // namespace loom
