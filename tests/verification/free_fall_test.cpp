@@ -81,3 +81,55 @@ TEST(EulerBackwardFreeFall, FollowsTheDiscreteExactSolutionWithConsistentMass) {
 
 }  // namespace
 }  // namespace loom
+
+// alpha-Bossak (and Newmark, alpha = 0) from the equilibrium a_0 = g: a constant acceleration is integrated
+// exactly, u = g t^2 / 2 and v = g t at every node and step (time_integrator.hpp), with the smoothed
+// u-p element and Hencky as well as the neo_hooke p1 block (a rigid translation: no stress in either).
+namespace loom {
+namespace {
+
+void check_bossak_free_fall(const std::string& integrator, double alpha, const std::string& body) {
+  SCOPED_TRACE(integrator + " alpha " + std::to_string(alpha) + " " + body);
+  std::string text = scene_text("lumped");
+  auto replace = [&](const std::string& a, const std::string& b) {
+    const auto at = text.find(a);
+    ASSERT_NE(at, std::string::npos) << a;
+    text.replace(at, a.size(), b);
+  };
+  replace("integrator = \"euler_backward\"", "integrator = \"" + integrator + "\"\ninitial_acceleration = \"equilibrium\"" +
+                                                 (integrator == "bossak" ? "\nalpha = " + std::to_string(alpha) : std::string()));
+  if (body == "es_up") {
+    replace("model = \"neo_hooke\"", "model = \"hencky_perzyna\"\ntau0 = 1.0\nviscosity = 0.5");
+    replace("material = \"m\"\n", "material = \"m\"\nelement = \"es_up\"\nalpha_stab = 0.5\n");
+  }
+  const SceneSpec scene = testing::scene_from_text(text);
+  testing::TempDir dir("free_fall_bossak");
+  auto run = testing::make_fem_run(scene, dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const auto probes = testing::read_probes(dir.file("probes.csv"));
+  const auto ux = probes.column("ux"), uy = probes.column("uy");
+  const double scale = std::hypot(kGx, kGy) * 0.5 * std::pow(kDt * kSteps, 2);
+  double worst = 0.0;
+  for (int n = 0; n <= kSteps; ++n) {
+    const double s = 0.5 * std::pow(kDt * n, 2);
+    worst = std::max(worst, std::max(std::abs(ux[std::size_t(n)] - kGx * s), std::abs(uy[std::size_t(n)] - kGy * s)) / scale);
+  }
+  const Vec2 g(kGx, kGy), v_exact = g * kDt * kSteps;
+  double worst_v = 0.0;
+  for (Index i = 0; i < run->nodes().size(); ++i) worst_v = std::max(worst_v, (run->nodes().v_n[i] - v_exact).norm() / v_exact.norm());
+  EXPECT_LE(worst, 1e-10);
+  EXPECT_LE(worst_v, 1e-10);
+  std::printf("[free fall] %-7s alpha %5.2f %-6s: u worst rel err %.1e, v %.1e\n", integrator.c_str(), alpha, body.c_str(), worst, worst_v);
+}
+
+TEST(BossakFreeFall, IsExactFromTheEquilibriumAcceleration) {
+  check_bossak_free_fall("newmark", 0.0, "p1");
+  for (const double alpha : {0.0, -0.1, -0.3}) {
+    check_bossak_free_fall("bossak", alpha, "p1");
+    check_bossak_free_fall("bossak", alpha, "es_up");
+  }
+}
+
+}  // namespace
+}  // namespace loom
