@@ -30,6 +30,9 @@ void FemRun::write_checkpoint(int step) {
     w.vector(key + "/colour_offsets", m_.cells[k].colour_offsets);
     w.store(key + "/quad_points", m_.quad[k]);
   }
+  // The integration domains of seed 001's elements: their history b^e_n and geometry in B_n.
+  w.value("domain_blocks", Index(m_.edges.size()));
+  for (std::size_t k = 0; k < m_.edges.size(); ++k) w.store("domains/" + std::to_string(k), m_.edges[k]);
   if (pfem_)
     for (std::size_t b = 0; b < topology_.triangles.size(); ++b) w.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
   store_checkpoint(w, options_, step);
@@ -67,6 +70,14 @@ CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
                   std::size_t(m_.cells[k].size()) * std::size_t(m_.quad[k].per_cell));
     if (!pfem_) r.expect(m_.cells[k].nodes.values() == connectivity[k], "has another mesh (cell block " + std::to_string(k) + ")");
     for (Index v : m_.cells[k].nodes) r.expect(v >= 0 && v < m_.nodes.size(), "has cells on nodes it does not hold");
+  }
+  LOOM_CHECK(r.value<Index>("domain_blocks") == Index(m_.edges.size()), InputError,
+             r.path() << ": error: the checkpoint has " << r.value<Index>("domain_blocks") << " blocks of integration domains, the scene "
+                      << m_.edges.size() << ": the scene differs from the one it was written for");
+  for (std::size_t k = 0; k < m_.edges.size(); ++k) {
+    const std::vector<Index> stencil = m_.edges[k].stencil.nodes.values();
+    r.store("domains/" + std::to_string(k), m_.edges[k]);
+    r.expect(m_.edges[k].stencil.nodes.values() == stencil, "has other integration domains (block " + std::to_string(k) + ")");
   }
   if (pfem_) {
     for (std::size_t b = 0; b < topology_.triangles.size(); ++b) {

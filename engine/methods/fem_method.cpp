@@ -206,6 +206,16 @@ void FemRun::describe(std::ostream& os) const {
     StoreReport r(os, std::string("quad_points[") + formulation_name(m_.cells[b].formulation) + "]", m_.quad[b].size());
     m_.quad[b].for_each_column(r);
   }
+  for (std::size_t e = 0; e < m_.edges.size(); ++e) {
+    const Edges<2>& d = m_.edges[e];
+    {
+      StoreReport r(os, std::string("edges[") + formulation_name(d.stencil.formulation) + ", " + cell_type_name(d.stencil.type) +
+                            (d.whole_triangles ? ", triangles" : "") + "]",
+                    d.size());
+      d.for_each_column(r);
+    }
+    os << "    colours: " << d.stencil.n_colours() << "\n";
+  }
   os << "  linear_system: " << m_.system.dofs.n_dofs() << " dofs, " << m_.system.dofs.n_free << " free, "
      << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
      << (m_.linear_solver == LinearSolverKind::umfpack ? "umfpack" : m_.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)")

@@ -69,6 +69,14 @@ TEST(Restart, FemDynamicContinuesBitForBit) {
                             {"time.steps=60", "output.every=30"}, 23, 60, "cantilever-release_000060.vtu");
 }
 
+// Seed 001's elements carry their history on the integration domains (b^e_n of every edge) and the pressure
+// as a nodal unknown; the Bossak cantilever needs both plus a_n in the checkpoint.
+TEST(Restart, EsFemBossakContinuesBitForBit) {
+  expect_restart_reproduces("es_fem", kSource + "/scenes/cantilever_dynamic_es.toml",
+                            {"time.steps=40", "output.every=20", "body[0].mesh.divisions=[16,4]"}, 17, 40,
+                            "cantilever-dynamic-es_000040.vtu");
+}
+
 // The moderately constrained block first changes its connectivity at step 138 and then 118 more times up
 // to step 220: the checkpoint of step 150 holds a remeshed mesh (not the generated one), and the continued
 // run remeshes it on, with TRI6 mid-nodes re-created at every remesh.
