@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 namespace loom {
 
@@ -42,14 +43,31 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   report.residuals.push_back(r0);
   if (s.log) *s.log << "  newton 0: |r_0| = " << r0 << ", force scale " << p.force_scale() << "\n";
   double r = r0;
+  // Blocks (when more than one): the largest norm of each in the step so far.
+  std::vector<double> block_reference(std::size_t(p.blocks()), 0.0);
+  auto note_blocks = [&] {
+    for (int b = 0; b < p.blocks(); ++b) block_reference[std::size_t(b)] = std::max(block_reference[std::size_t(b)], p.block_norm(b));
+  };
+  auto blocks_converged = [&](bool first_assembly) {
+    for (int b = 0; b < p.blocks(); ++b) {
+      const double n = p.block_norm(b);
+      double reference = first_assembly ? 0.0 : block_reference[std::size_t(b)];
+      if (b == 0) reference = std::max(reference, p.force_scale());
+      if (!(n <= s.residual_absolute || n <= s.residual_relative * reference)) return false;
+    }
+    return true;
+  };
+  note_blocks();
   // Converged at residual norm `res` after an increment of norm `increment`.
   auto converged_at = [&](double res, double increment) {
     if (p.prescribed_pending()) return false;
+    if (increment <= s.increment_relative * p.step_change_norm()) return true;
+    if (p.blocks() > 1) return blocks_converged(false);
     const double reference = std::max(r0, p.force_scale());
-    return res <= s.residual_absolute || res <= s.residual_relative * reference ||
-           increment <= s.increment_relative * p.step_change_norm();
+    return res <= s.residual_absolute || res <= s.residual_relative * reference;
   };
-  if ((r <= s.residual_absolute || r <= s.residual_relative * p.force_scale()) && !p.prescribed_pending()) {
+  const bool at_rest = p.blocks() > 1 ? blocks_converged(true) : r <= s.residual_absolute || r <= s.residual_relative * p.force_scale();
+  if (at_rest && !p.prescribed_pending()) {
     report.converged = true;
     return report;
   }
@@ -88,6 +106,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     if (!admissible) return fail("a cell inverted during the Newton iterations");
     if (!std::isfinite(r_new)) return fail("the residual is not finite");
     r = r_new;
+    note_blocks();
     report.residuals.push_back(r);
     if (s.log) *s.log << "  newton " << it << ": |r| = " << r << " (|r|/|r_0| = " << r / std::max(r0, 1e-300) << "), step " << step << "\n";
     if (converged_at(r, step * p.increment_norm())) {

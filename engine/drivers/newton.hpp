@@ -5,8 +5,9 @@
 // that starts in equilibrium at round-off does not chase round-off), or the increment stagnates at
 // round-off (|du| <= increment_relative |u - u_n|). An optional
 // backtracking line search halves the step while the residual does not decrease (Armijo, c = 1e-4) or
-// the iterate is inadmissible (an inverted cell). Failure is reported, never thrown: the caller cuts the
-// step back.
+// the iterate is inadmissible (an inverted cell). A problem with several residual blocks (mixed u-p) is
+// converged when each block is (NonlinearProblem::blocks). Failure is reported, never thrown: the caller
+// cuts the step back.
 #pragma once
 
 #include <ostream>
@@ -47,6 +48,11 @@ class NonlinearProblem {
   virtual bool prescribed_pending() const = 0;  // some prescribed dof has not reached its target
   // Norm of the forces in balance at the last assembly (external loads, reactions); 0 if unknown.
   virtual double force_scale() const { return 0.0; }
+  // Residual blocks tested separately (seed 001 §3.6: the momentum and the pressure residuals, in force and
+  // volume units): block 0 is the momentum one, measured against the force scale; every block must fall
+  // below residual_relative times the largest norm it had in the step (or below residual_absolute).
+  virtual int blocks() const { return 1; }
+  virtual double block_norm(int /*block*/) const { return residual_norm(); }
 };
 
 struct NewtonReport {

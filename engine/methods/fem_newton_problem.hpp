@@ -63,6 +63,18 @@ class FemNewtonProblem final : public NonlinearProblem {
     for (const auto& p : bc_.prescribed) s += system_.residual_full[p.dof] * system_.residual_full[p.dof];
     return std::sqrt(s);
   }
+  // u-p formulations (seed 001): the momentum and the pressure residuals are converged separately.
+  int blocks() const override { return nodes_.p_n.used() && system_.dofs.per_node == 3 ? 2 : 1; }
+  double block_norm(int block) const override {
+    if (blocks() == 1) return residual_norm();
+    const DofMap& dofs = system_.dofs;
+    double sum = 0.0;
+    for (Index dof = 0; dof < dofs.n_dofs(); ++dof) {
+      const Index eq = dofs.equation[std::size_t(dof)];
+      if (eq != kNoIndex && (dof % 3 == 2) == (block == 1)) sum += system_.residual[eq] * system_.residual[eq];
+    }
+    return std::sqrt(sum);
+  }
   bool prescribed_pending() const override {
     for (const auto& p : bc_.prescribed) {
       const double target = bc_.target[p.dof], u = nodes_.u[p.node][p.dof % bc_.per_node];

@@ -212,3 +212,61 @@ TEST(SolveNewton, RelativeResidualCriterion) {
 }
 
 }  // namespace loom
+
+namespace loom {
+namespace {
+
+// Two residual blocks of very different size (forces and volumes): x0 - 1 = 0 (block 0, solved exactly by
+// the first iteration) and 1e-6 (x1 - 2) = 0 (block 1, whose error the tangent only halves per iteration).
+// The combined norm is below 1e-3 of its start after one iteration; the block test waits for block 1.
+class TwoBlockProblem : public ToyProblem {
+ public:
+  using ToyProblem::ToyProblem;
+  int blocks() const override { return 2; }
+  double block_norm(int b) const override { return std::abs(r(b)); }
+};
+
+}  // namespace
+
+TEST(SolveNewton, EveryResidualBlockMustConverge) {
+  auto r_fn = [](const Eigen::VectorXd& x) { return vec({x(0) - 1.0, 1e-6 * (x(1) - 2.0)}); };
+  auto J_fn = [](const Eigen::VectorXd&) {
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, 2);
+    J(0, 0) = 1.0, J(1, 1) = 2e-6;
+    return J;
+  };
+  NewtonSettings s = strict();
+  s.residual_relative = 1e-3, s.residual_absolute = 0.0;
+  Timers timers;
+  TwoBlockProblem blocks(vec({2.0, 3.0}), r_fn, J_fn);
+  const NewtonReport rep = solve_newton(blocks, s, timers);
+  ASSERT_TRUE(rep.converged);
+  EXPECT_EQ(rep.iterations, 10);  // 2^-10 < 1e-3 < 2^-9 for block 1
+  ToyProblem combined(vec({2.0, 3.0}), r_fn, J_fn);
+  const NewtonReport one = solve_newton(combined, s, timers);
+  ASSERT_TRUE(one.converged);
+  EXPECT_EQ(one.iterations, 1);
+}
+
+// A frozen tangent assembles it once: later iterations ask for the residual only.
+TEST(SolveNewton, TangentOncePerStepAssemblesItOnce) {
+  struct Counting : ToyProblem {
+    using ToyProblem::ToyProblem;
+    int tangents = 0;
+    bool assemble(bool with_tangent) override {
+      tangents += with_tangent;
+      return ToyProblem::assemble(with_tangent);
+    }
+  };
+  Counting p(vec({0.5}), [](const Eigen::VectorXd& x) { return vec({std::atan(x(0))}); },
+             [](const Eigen::VectorXd& x) { return Eigen::MatrixXd::Constant(1, 1, 1.0 / (1.0 + x(0) * x(0))); });
+  NewtonSettings s = strict();
+  s.tangent_once_per_step = true;
+  Timers timers;
+  const NewtonReport rep = solve_newton(p, s, timers);
+  ASSERT_TRUE(rep.converged) << rep.failure;
+  EXPECT_EQ(p.tangents, 1);
+  EXPECT_GT(rep.iterations, 4);  // linear convergence of the modified Newton method
+}
+
+}  // namespace loom
