@@ -29,7 +29,7 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
   resolve_probe_groups();
   check_model();
   if (options_.profile) timers_.enable_profile();
-  pfem_ = scene_.scene.method == Method::pfem;
+  pfem_ = scene_.scene.method == Method::pfem || scene_.scene.method == Method::es_pfem;
   if (pfem_) {
     const PfemSpec& p = scene_.pfem;
     pfem_settings_.remesh = {p.alpha, p.lchar, p.local};
@@ -85,7 +85,7 @@ void FemRun::check_model() const {
 }
 
 void FemRun::build_graph() {
-  graph_ = std::make_unique<StepGraph>(pfem_ ? "pfem" : "fem", ctx_, timers_);
+  graph_ = std::make_unique<StepGraph>(method_name(scene_.scene.method), ctx_, timers_);
   StepGraph& g = *graph_;
   g.name_store(&m_.nodes, "nodes");
   g.name_store(&m_.cells, "cells");
@@ -186,7 +186,7 @@ void FemRun::output_node() {
 }
 
 void FemRun::describe(std::ostream& os) const {
-  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method fem, " << scene_.bodies.size() << (scene_.bodies.size() == 1 ? " body\n" : " bodies\n");
+  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method " << method_name(scene_.scene.method) << ", " << scene_.bodies.size() << (scene_.bodies.size() == 1 ? " body\n" : " bodies\n");
   os << "stores:\n";
   {
     StoreReport r(os, "nodes", m_.nodes.size());

@@ -5,10 +5,8 @@
 #include "engine/core/errors.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_mesh.hpp"
-#include "engine/mesh/smoothing_edges.hpp"
-#include "engine/mesh/triangle_geometry.hpp"
+#include "engine/methods/build_domains.hpp"
 #include "engine/methods/memory_estimate.hpp"
-#include "systems/assemble/smoothing_geometry.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/update/lumped_mass.hpp"
 
@@ -33,31 +31,6 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
   return LinearSolverKind::umfpack;
 }
 
-// The integration domains of seed 001's blocks (edges or triangles) with their geometry in B_0, and the
-// triangles' reference areas for the pressure terms.
-void build_domains(const Nodes<2>& nodes, std::vector<Cells>& cells, std::vector<Edges<2>>& edges) {
-  for (std::size_t b = 0; b < cells.size(); ++b) {
-    Cells& cb = cells[b];
-    if (!integrates_on_domains(cb.formulation)) continue;
-    std::vector<Edges<2>> made;
-    if (edge_smoothed(cb.formulation)) {
-      EdgeDomains d = build_edge_domains(cb, nodes.size());
-      made.push_back(std::move(d.interior)), made.push_back(std::move(d.boundary));
-    } else {
-      made.push_back(build_triangle_domains(cb, nodes.size()));
-    }
-    for (auto& e : made) {
-      if (e.size() == 0) continue;
-      e.cell_block = Index(b);
-      compute_smoothing_geometry(nodes, cb, e);
-      edges.push_back(std::move(e));
-    }
-    cb.measure.use();
-    cb.measure.resize(cb.size());
-    for (Index c = 0; c < cb.size(); ++c) cb.measure[c] = signed_area(nodes.X[cb.node(c, 0)], nodes.X[cb.node(c, 1)], nodes.X[cb.node(c, 2)]);
-  }
-}
-
 }  // namespace
 
 FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
@@ -73,6 +46,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   nodes.phi_n.use(dilatation);
   nodes.p.use(pressure);
   nodes.p_n.use(pressure);
+  nodes.J_node.use(scene.scene.method == Method::es_pfem);
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.
@@ -87,6 +61,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
     throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (size or scale too extreme?)");
   }
   build_domains(nodes, cells, edges);
+  set_reference_areas(nodes, cells);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.

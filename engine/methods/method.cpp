@@ -9,11 +9,12 @@ namespace loom {
 std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options) {
   switch (scene.scene.method) {
     case Method::fem:
-    case Method::pfem: return std::make_unique<FemRun>(scene, options);
+    case Method::pfem:
+    case Method::es_pfem: return std::make_unique<FemRun>(scene, options);
     case Method::mpm: return std::make_unique<MpmRun>(scene, options);
     default: break;
   }
-  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, pfem, mpm)");
+  throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, pfem, es_pfem, mpm)");
 }
 
 }  // namespace loom

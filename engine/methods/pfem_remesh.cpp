@@ -6,6 +6,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/mesh/colouring.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
+#include "engine/methods/domain_transfer.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/assemble/elements/tri3.hpp"
 #include "systems/assemble/elements/tri6.hpp"
@@ -144,6 +145,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
       }
     }
   }
+  const DomainSnapshot old_domains = snapshot_domains(m.edges, m.cells);  // es_pfem: the domains' history
   std::vector<Cells> old_cells;
   if (!report.changed) {
     for (std::size_t b = 0; b < n_bodies; ++b) triangles[b] = topo.triangles[b];  // keep the cell order
@@ -217,6 +219,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
+  if (!m.edges.empty()) transfer_domains(old_domains, m.nodes, m.cells, m.edges);
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
 
   transfer.stop();
@@ -245,10 +248,13 @@ void rebuild_system(FemModel& m, const PfemTopology& topo, bool connectivity_cha
     m.system.dofs.build(per_node, std::move(kinds), m.bc.ties);
     std::vector<const Cells*> blocks;
     for (const auto& c : m.cells) blocks.push_back(&c);
+    for (const auto& e : m.edges) blocks.push_back(&e.stencil);
     build_pattern(blocks, m.system.dofs, m.system.pattern);
   }
   m.system.scatter.resize(m.cells.size());
   for (std::size_t k = 0; k < m.cells.size(); ++k) build_scatter(m.cells[k], m.system.dofs, m.system.pattern, m.system.scatter[k]);
+  m.system.domain_scatter.resize(m.edges.size());
+  for (std::size_t e = 0; e < m.edges.size(); ++e) build_scatter(m.edges[e].stencil, m.system.dofs, m.system.pattern, m.system.domain_scatter[e]);
   m.system.resize_vectors();
 }
 

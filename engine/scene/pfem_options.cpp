@@ -6,11 +6,14 @@ namespace loom {
 
 void read_pfem_options(SceneSpec& s, const TableReader& root) {
   const auto remesh = root.table("remesh"), map = root.table("map");
-  if (s.scene.method != Method::pfem) {
-    if (remesh.present()) root.error("remesh", "[remesh] is used by method = \"pfem\" only");
+  const bool es = s.scene.method == Method::es_pfem;
+  if (s.scene.method != Method::pfem && !es) {
+    if (remesh.present()) root.error("remesh", "[remesh] is used by methods pfem and es_pfem only");
     if (map.present()) root.error("map", "[map] is used by method = \"pfem\" only");
     return;
   }
+  // es_pfem transfers b^e from the nearest old edge and J from the particles (seed 001 §3.5): no choice.
+  if (es && map.present()) root.error("map", "[map] is used by method = \"pfem\"; es_pfem transfers its edges' history itself");
   s.pfem.alpha = remesh.real("alpha");
   s.pfem.every = int(remesh.integer("every"));
   if (const auto l = remesh.expression("lchar"); l && remesh.has("lchar")) {

@@ -74,7 +74,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       break;
     case ProbeKind::remesh:
       needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
-      if (s.scene.method != Method::pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\"");
+      if (s.scene.method != Method::pfem && s.scene.method != Method::es_pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\" or \"es_pfem\"");
       break;
     case ProbeKind::extent:
     case ProbeKind::volume:

@@ -82,8 +82,8 @@ class Loader {
     const std::string m = t.string("method");
     s.scene.method = pick<Method>(m, {{"fem", Method::fem}, {"pfem", Method::pfem}, {"es_pfem", Method::es_pfem},
                                       {"mpm", Method::mpm}, {"mpm_fem", Method::mpm_fem}});
-    if (s.scene.method != Method::fem && s.scene.method != Method::pfem && s.scene.method != Method::mpm)
-      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, pfem, mpm)");
+    if (s.scene.method == Method::mpm_fem)
+      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, pfem, es_pfem, mpm)");
     s.scene.dimension = int(t.integer("dimension"));
     s.scene.units = t.string("units");
     s.scene.description = t.string("description");

@@ -25,8 +25,9 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
   s.push_back(key("scene.method", K::choice,
                   "Method (recipe) that runs the scene: fem (updated-Lagrangian finite elements on a fixed mesh), pfem (remeshing "
-                  "every step, [Schewe 2024] §3) or mpm (implicit mixed material point method, [Moreno et al.]); es_pfem "
-                  "([Reinold 2021]) and mpm_fem ([Aulisa 2019]) are planned.")
+                  "every step, [Schewe 2024] §3), es_pfem (the edge-based smoothed elements remeshed every step, [Reinold 2021]; "
+                  "no walls or inflow yet) or mpm (implicit mixed material point method, [Moreno et al.]); mpm_fem ([Aulisa 2019]) is "
+                  "planned.")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
@@ -213,7 +214,7 @@ std::vector<KeySpec> build_schema() {
                   "rejected (triangles removed by the alpha test), isolated (particles in no triangle).")
                   .one_of({"area_change", "changed", "rejected", "isolated"}));
   // [remesh], [map]: pfem only
-  s.push_back(key("remesh", K::table, "PFEM remeshing (method = pfem): constrained Delaunay of the particles and alpha-shape test ([Schewe 2024] §3.1)."));
+  s.push_back(key("remesh", K::table, "Remeshing (methods pfem and es_pfem): constrained Delaunay of the particles and alpha-shape test ([Schewe 2024] §3.1); es_pfem rebuilds its edges and transfers their history ([Reinold 2021] §3.5)."));
   s.push_back(key("remesh.alpha", K::real, "alpha of the alpha-shape test ([Schewe 2024] eq 16): a triangle with circumradius > alpha * l_char is removed.").by_default("1.2").above(0));
   s.push_back(key("remesh.lchar", K::expression,
                   "Characteristic length l_char of [Schewe 2024] eq 16: a number, or \"local\" for l_char^loc of eqs 17-18 (mean neighbour distance "

@@ -29,9 +29,11 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
     if (m.model != MaterialModel::hencky_perzyna && m.model != MaterialModel::linear_elastic)
       t.error("element", std::string(element) + " takes model = \"hencky_perzyna\" (finite strain, with history) or \"linear_elastic\" "
                                                 "(geometrically linear); material \"" + m.name + "\" is another model");
-    if (s.scene.method != Method::fem)
-      t.error("element", std::string(element) + " runs on a fixed mesh (method = \"fem\") for now; method " + method_name(s.scene.method) +
-                             " takes other elements");
+    if (s.scene.method != Method::fem && s.scene.method != Method::es_pfem)
+      t.error("element", std::string(element) + " runs with method = \"fem\" (fixed mesh) or \"es_pfem\" (remeshed); method " +
+                             method_name(s.scene.method) + " takes other elements");
+  } else if (s.scene.method == Method::es_pfem) {
+    t.error("element", "method es_pfem takes the elements es_up, es_u, fem_up or fem_u, not " + std::string(element));
   } else if (std::isfinite(m.tau0)) {
     t.error("material", "material \"" + m.name + "\" yields (tau0): viscoplasticity needs an element that carries history (es_up, es_u, "
                         "fem_up, fem_u), not " + element);

@@ -26,6 +26,7 @@ struct Nodes {
   // undeformed), v_n and a_n the projected particle velocity and acceleration, lumped_mass the projected mass.
   Column<double> p;            // pressure iterate (mixed u-p), sigma = sigma_dev + p I
   Column<double> p_n;          // converged pressure (mixed u-p on a mesh: a nodal unknown that persists)
+  Column<double> J_node;       // nodal volume ratio J^l of the particles (es_pfem, seed 001 eq 56; 1 at the start)
   Column<Vec<D>> proj_u;       // OSGS projections of the momentum and pressure residuals (seed 003 §5)
   Column<double> proj_p;
   Column<double> lumped_volume;  // OSGS: sum_p N_I V_p^n, the lumped matrix of the L2 projection
@@ -41,7 +42,7 @@ struct Nodes {
   template <class Visit>
   void for_each_column(Visit&& f) {
     f("X", X), f("u", u), f("u_n", u_n), f("v", v), f("v_n", v_n), f("a", a), f("a_n", a_n),
-        f("lumped_mass", lumped_mass), f("phi", phi), f("phi_n", phi_n), f("p", p), f("p_n", p_n), f("proj_u", proj_u), f("proj_p", proj_p),
+        f("lumped_mass", lumped_mass), f("phi", phi), f("phi_n", phi_n), f("p", p), f("p_n", p_n), f("J_node", J_node), f("proj_u", proj_u), f("proj_p", proj_p),
         f("lumped_volume", lumped_volume);
   }
   template <class Visit>
@@ -49,13 +50,13 @@ struct Nodes {
     const_cast<Nodes*>(this)->for_each_column([&](const char* name, const auto& c) { f(name, c); });
   }
 
-  // Sizes every used column to n entities (new entries are zero, phi one: the undeformed dilatation).
+  // Sizes every used column to n entities (new entries are zero, phi and J_node one: undeformed).
   void resize(Index n) {
     for_each_column([this, n](const char*, auto& c) {
       using T = typename std::decay_t<decltype(c)>::value_type;
       if constexpr (std::is_arithmetic_v<T>) {
         const void* column = &c;
-        c.resize(n, column == &phi || column == &phi_n ? T(1) : T(0));
+        c.resize(n, column == &phi || column == &phi_n || column == &J_node ? T(1) : T(0));
       } else {
         c.resize(n, T::Zero());
       }

@@ -18,10 +18,29 @@ void domain_stress_to_cells(const std::vector<Edges<2>>& edges, std::vector<Quad
   }
 }
 
-void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, const Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
+void update_nodal_jacobian(const std::vector<Edges<2>>& edges, Nodes<2>& nodes) {
+  std::vector<double> jV(std::size_t(nodes.size()), 0.0), V(std::size_t(nodes.size()), 0.0);
+  // Serial: nodes gather from many domains; once per step.
+  for (const Edges<2>& e : edges) {
+    const int S = e.stride();
+    for (Index k = 0; k < e.size(); ++k) {
+      const double volume = e.jacobian_step[k] * e.volume_n[k];  // V^k at t_n+1
+      for (int a = 0; a < S; ++a)
+        if (e.pressure_weight[k * S + a] > 0.0) {
+          const std::size_t l = std::size_t(e.stencil.node(k, a));
+          jV[l] += e.jacobian_step[k] * volume, V[l] += volume;
+        }
+    }
+  }
+  for (Index l = 0; l < nodes.size(); ++l)
+    if (V[std::size_t(l)] > 0.0) nodes.J_node[l] *= jV[std::size_t(l)] / V[std::size_t(l)];
+}
+
+void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
                     std::vector<Edges<2>>& edges) {
   for (Edges<2>& e : edges) for_each_index(e.size(), [&](Index k) { e.be_n[k] = e.be[k]; });
   domain_stress_to_cells(edges, quad);
+  if (nodes.J_node.used()) update_nodal_jacobian(edges, nodes);
   Index bad = 0;
   for (Edges<2>& e : edges) bad += compute_smoothing_geometry(nodes, cells[std::size_t(e.cell_block)], e);
   LOOM_CHECK(bad == 0, RunError, bad << " smoothing domains are inverted in the converged configuration of step " << ctx.step);

@@ -1,7 +1,9 @@
 // Accepts a converged step on the integration domains of seed 001 (run after commit_step, which moved
 // u_n): the history b^e_n <- b^e, each triangle's stored stress (the mean of its three edges' stress, or
-// its own domain's for fem_up / fem_u; seed 001 §3.5, what output and probes read), and the domains'
-// geometry in the new B_n.
+// its own domain's for fem_up / fem_u; seed 001 §3.5, what output and probes read), the particles' nodal J
+// where it is kept (es_pfem: J^l_n+1 = J^l_n j^l, j^l = sum_k j^k V^k / sum_k V^k over the domains whose
+// pressure node l is, V^k at t_n+1; eq 56, the dimension factor h cancels), and the domains' geometry in
+// the new B_n.
 #pragma once
 
 #include <vector>
@@ -14,8 +16,11 @@
 
 namespace loom {
 
-void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, const Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
+void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
                     std::vector<Edges<2>>& edges);
+
+// J^l *= j^l from the domains' det f of the step (eq 56).
+void update_nodal_jacobian(const std::vector<Edges<2>>& edges, Nodes<2>& nodes);
 
 // The triangles' stored stress from their domains (also at set-up and after a restore).
 void domain_stress_to_cells(const std::vector<Edges<2>>& edges, std::vector<QuadPoints<2>>& quad);

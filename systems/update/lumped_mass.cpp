@@ -11,8 +11,11 @@ void compute_lumped_mass(const std::vector<Cells>& cells, const std::vector<Quad
     const Cells& cb = cells[b];
     const QuadPoints<2>& qb = quad[b];
     for (Index c = 0; c < cb.size(); ++c) {  // serial: scatter to shared nodes, done once
+      // Seed 001's triangles know their reference area (a remeshed triangle has no F of its own).
       double volume0 = 0.0;
-      for (int q = 0; q < qb.per_cell; ++q) volume0 += qb.weight_n[c * qb.per_cell + q] / qb.F_n[c * qb.per_cell + q].determinant();
+      if (integrates_on_domains(cb.formulation) && cb.measure.used()) volume0 = cb.measure[c];
+      else
+        for (int q = 0; q < qb.per_cell; ++q) volume0 += qb.weight_n[c * qb.per_cell + q] / qb.F_n[c * qb.per_cell + q].determinant();
       const double rho = materials[std::size_t(cb.body[c])].density;
       if (cb.type == CellType::tri6) {
         const auto m = tri6_lumped_mass(volume0);

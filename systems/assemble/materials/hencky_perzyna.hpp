@@ -73,7 +73,9 @@ struct HenckyPerzyna {
       out.tau_eq = factor * q;
     }
     if (!deviatoric) t.array() += K * theta, a.array() += K;
-    out.be = n * eps.array().exp().square().matrix().asDiagonal() * n.transpose();
+    // Elastic: b^e is the trial state itself (rebuilding it from the spectral form would only add round-off,
+    // and a body at rest would drift by it step after step).
+    out.be = out.plastic ? Mat3(n * eps.array().exp().square().matrix().asDiagonal() * n.transpose()) : be_tr;
     out.tau = n * t.asDiagonal() * n.transpose();
     out.J = std::exp(theta);
     if (tangent) out.c_tau = spatial_tangent(n, w, t, a);

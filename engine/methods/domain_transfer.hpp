@@ -1,0 +1,44 @@
+// The history of seed 001's integration domains across a remesh (es_pfem, seed 001 §3.5):
+//  - a domain whose edge survives (same two end nodes; a triangle domain: same corners) keeps its b^e_n;
+//  - a new one takes the isochoric part of the nearest old domain's b^e (closest midpoint, CPM),
+//    b_bar = (det b^e)^(-1/3) b^e, and the volumetric part from the particles' nodal J (eq 56):
+//    b^e = (J^k)^(2/3) b_bar, J^k = the mean of J^l over the domain's pressure nodes (an edge's two ends).
+//  - a triangle keeps its reference area if it survives, and a new one gets A_n / J_e with J_e the mean nodal J
+//    of its corners (the spec's reading of eqs 42, 48 and of the lumped mass, ambiguity 21).
+// The spec applies the projection to every edge at every remesh; loom keeps surviving edges as they are, so
+// that remeshing a resting body changes nothing (an idle remesh must not creep) and the projection acts only
+// where the mesh changed. docs/es_fem.md says why.
+#pragma once
+
+#include <array>
+#include <map>
+#include <vector>
+
+#include "engine/store/cells.hpp"
+#include "engine/store/edges.hpp"
+#include "engine/store/nodes.hpp"
+
+namespace loom {
+
+// What the old mesh leaves for the transfer: per domain key (sorted end nodes, or sorted corners) its b^e_n,
+// the midpoints and b^e of all old domains, and the reference areas of the old triangles.
+struct DomainSnapshot {
+  using Key = std::array<Index, 3>;
+  std::map<Key, Index> domain_of;  // key -> index into midpoint / be
+  std::vector<Vec2> midpoint;
+  std::vector<Mat3> be;
+  std::map<Key, double> reference_area;  // sorted corners -> A_0 of a triangle of a domain block
+};
+
+struct DomainTransferStats {
+  Index kept = 0, projected = 0;
+};
+
+DomainSnapshot snapshot_domains(const std::vector<Edges<2>>& edges, const std::vector<Cells>& cells);
+
+// Rebuilds `edges` on the new `cells` (geometry at x_n) and fills their history and the triangles' reference
+// areas from the snapshot; nodes.J_node must be in use.
+DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
+                                     std::vector<Edges<2>>& edges);
+
+}  // namespace loom
