@@ -6,7 +6,8 @@
 
 namespace loom {
 
-void build_domains(const Nodes<2>& nodes, const std::vector<Cells>& cells, std::vector<Edges<2>>& edges) {
+void build_domains(const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<char>& j_projection,
+                   std::vector<Edges<2>>& edges) {
   for (std::size_t b = 0; b < cells.size(); ++b) {
     const Cells& cb = cells[b];
     if (!integrates_on_domains(cb.formulation)) continue;
@@ -20,6 +21,7 @@ void build_domains(const Nodes<2>& nodes, const std::vector<Cells>& cells, std::
     for (auto& e : made) {
       if (e.size() == 0) continue;
       e.cell_block = Index(b);
+      e.j_projection = cb.size() > 0 && j_projection[std::size_t(cb.body[0])];
       compute_smoothing_geometry(nodes, cb, e);
       edges.push_back(std::move(e));
     }

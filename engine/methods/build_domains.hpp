@@ -11,8 +11,10 @@
 
 namespace loom {
 
-// Appends the domains of every block that integrates on domains to `edges` (empty stores are skipped).
-void build_domains(const Nodes<2>& nodes, const std::vector<Cells>& cells, std::vector<Edges<2>>& edges);
+// Appends the domains of every block that integrates on domains to `edges` (empty stores are skipped);
+// j_projection[b] is body b's option.
+void build_domains(const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<char>& j_projection,
+                   std::vector<Edges<2>>& edges);
 
 // cells.measure of those blocks = the triangle's area in the reference configuration X (a fixed mesh).
 void set_reference_areas(const Nodes<2>& nodes, std::vector<Cells>& cells);

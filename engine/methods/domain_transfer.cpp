@@ -6,6 +6,7 @@
 #include "engine/methods/build_domains.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 #include "systems/map/map_state.hpp"
+#include "systems/update/commit_domains.hpp"
 
 namespace loom {
 namespace {
@@ -42,7 +43,7 @@ DomainSnapshot snapshot_domains(const std::vector<Edges<2>>& edges, const std::v
 }
 
 DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
-                                     std::vector<Edges<2>>& edges) {
+                                     const std::vector<char>& j_projection, std::vector<Edges<2>>& edges) {
   DomainTransferStats stats;
   // Triangles: reference areas.
   for (Cells& c : cells) {
@@ -61,7 +62,7 @@ DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& 
   }
   // Domains: rebuilt, then their history.
   edges.clear();
-  build_domains(nodes, cells, edges);
+  build_domains(nodes, cells, j_projection, edges);
   std::vector<Vec2> new_mid;
   std::vector<Index> copy_from;
   for (const Edges<2>& e : edges)
@@ -75,14 +76,10 @@ DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& 
   map_state(old.midpoint, old.be, new_mid, copy_from, MapSettings{}, be, map_stats);
   std::size_t next = 0;
   for (Edges<2>& e : edges) {
-    const int S = e.stride();
     for (Index k = 0; k < e.size(); ++k, ++next) {
       Mat3 b = be[next];
       if (copy_from[next] == kNoIndex) {
-        double J = 0.0, w = 0.0;
-        for (int a = 0; a < S; ++a)
-          if (const double n = e.pressure_weight[k * S + a]; n > 0.0) J += n * nodes.J_node[e.stencil.node(k, a)], w += n;
-        b *= std::pow(J / w, 2.0 / 3.0) / std::cbrt(b.determinant());
+        b = with_volume_ratio(b, domain_nodal_jacobian(nodes, e, k));
         ++stats.projected;
       } else {
         ++stats.kept;

@@ -39,6 +39,6 @@ DomainSnapshot snapshot_domains(const std::vector<Edges<2>>& edges, const std::v
 // Rebuilds `edges` on the new `cells` (geometry at x_n) and fills their history and the triangles' reference
 // areas from the snapshot; nodes.J_node must be in use.
 DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
-                                     std::vector<Edges<2>>& edges);
+                                     const std::vector<char>& j_projection, std::vector<Edges<2>>& edges);
 
 }  // namespace loom

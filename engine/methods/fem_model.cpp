@@ -1,5 +1,6 @@
 #include "engine/methods/fem_model.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -46,7 +47,8 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   nodes.phi_n.use(dilatation);
   nodes.p.use(pressure);
   nodes.p_n.use(pressure);
-  nodes.J_node.use(scene.scene.method == Method::es_pfem);
+  for (const auto& b : scene.bodies) j_projection.push_back(b.j_projection);
+  nodes.J_node.use(scene.scene.method == Method::es_pfem || std::count(j_projection.begin(), j_projection.end(), 1) > 0);
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.
@@ -60,7 +62,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
     else where << scene.file << ": error: body mesh";
     throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (size or scale too extreme?)");
   }
-  build_domains(nodes, cells, edges);
+  build_domains(nodes, cells, j_projection, edges);
   set_reference_areas(nodes, cells);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
 

@@ -30,6 +30,7 @@ struct FemModel {
   std::vector<Cells> cells;
   std::vector<QuadPoints<2>> quad;
   std::vector<Edges<2>> edges;   // integration domains of seed 001's formulations (es_*, fem_*), each tied to a cell block
+  std::vector<char> j_projection;  // per body: body[].j_projection
   std::vector<BodyMaterial> materials;
   BoundaryConditions<2> bc;
   LinearSystem system;

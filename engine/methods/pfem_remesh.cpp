@@ -219,7 +219,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
-  if (!m.edges.empty()) transfer_domains(old_domains, m.nodes, m.cells, m.edges);
+  if (!m.edges.empty()) transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges);
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
 
   transfer.stop();

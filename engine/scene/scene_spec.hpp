@@ -106,6 +106,7 @@ struct BodySpec {
   Formulation element = Formulation::p1;
   double alpha_s = 0.0;  // PPP stabilisation of p1p1_uphi, stress units (resolved from the scene's formula)
   double alpha_stab = 0.0;  // PPP stabilisation of es_up and fem_up, dimensionless (seed 001 eq 48)
+  bool j_projection = false;  // es_*, fem_*: b^e's volumetric part from the nodal J after every step (seed 001 eq 56)
   MeshSpec mesh;
   VectorExpression body_force;
   // Method mpm (seed 003):

@@ -103,6 +103,10 @@ std::vector<KeySpec> build_schema() {
                   "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "
                   "([Reinold 2021] eq 48); 0: the unstabilised u-p element (ES-FEM-UP); the paper uses 0.5 (Cook's membrane) and 200 "
                   "(flows).").at_least(0));
+  s.push_back(key("body[].j_projection", K::boolean,
+                  "es_up, es_u, fem_up, fem_u: after every step, replace the volumetric part of each domain's b^e by the mean of its "
+                  "nodes' J, which the particles carry from step to step ([Reinold 2021] eq 56; on a fixed mesh the ES-FEM-UP-J-proj of "
+                  "§4.2). Off: es_pfem projects only the edges a remesh creates.").by_default("false"));
   s.push_back(key("body[].alpha_s", K::expression,
                   "PPP stabilisation factor alpha_s of p1p1_uphi ([Schewe 2024] eq 30), in stress units: a number, or a formula in the "
                   "material's K, G, E and nu (eq 47 suggests K; eq 52 and the benchmarks use K/10). Larger: smoother pressure, softer "

@@ -23,6 +23,9 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   } else if (t.has("alpha_stab")) {
     t.error("alpha_stab", "alpha_stab is used by element = \"es_up\" or \"fem_up\" only");
   }
+  b.j_projection = t.boolean("j_projection");
+  if (t.has("j_projection") && !integrates_on_domains(b.element))
+    t.error("j_projection", "j_projection is used by the elements es_up, es_u, fem_up and fem_u only");
   if (b.material == kNoIndex) return;
   const MaterialSpec& m = s.materials[std::size_t(b.material)];
   if (integrates_on_domains(b.element)) {

@@ -1,5 +1,7 @@
 #include "systems/update/commit_domains.hpp"
 
+#include <cmath>
+
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
 #include "systems/assemble/smoothing_geometry.hpp"
@@ -36,11 +38,27 @@ void update_nodal_jacobian(const std::vector<Edges<2>>& edges, Nodes<2>& nodes) 
     if (V[std::size_t(l)] > 0.0) nodes.J_node[l] *= jV[std::size_t(l)] / V[std::size_t(l)];
 }
 
+double domain_nodal_jacobian(const Nodes<2>& nodes, const Edges<2>& e, Index k) {
+  const int S = e.stride();
+  double J = 0.0, w = 0.0;
+  for (int a = 0; a < S; ++a)
+    if (const double n = e.pressure_weight[k * S + a]; n > 0.0) J += n * nodes.J_node[e.stencil.node(k, a)], w += n;
+  return J / w;
+}
+
+Mat3 with_volume_ratio(const Mat3& be, double J) { return be * (std::pow(J, 2.0 / 3.0) / std::cbrt(be.determinant())); }
+
+void project_volumetric_part(const Nodes<2>& nodes, Edges<2>& e) {
+  for_each_index(e.size(), [&](Index k) { e.be_n[k] = e.be[k] = with_volume_ratio(e.be_n[k], domain_nodal_jacobian(nodes, e, k)); });
+}
+
 void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
                     std::vector<Edges<2>>& edges) {
   for (Edges<2>& e : edges) for_each_index(e.size(), [&](Index k) { e.be_n[k] = e.be[k]; });
   domain_stress_to_cells(edges, quad);
   if (nodes.J_node.used()) update_nodal_jacobian(edges, nodes);
+  for (Edges<2>& e : edges)
+    if (e.j_projection) project_volumetric_part(nodes, e);
   Index bad = 0;
   for (Edges<2>& e : edges) bad += compute_smoothing_geometry(nodes, cells[std::size_t(e.cell_block)], e);
   LOOM_CHECK(bad == 0, RunError, bad << " smoothing domains are inverted in the converged configuration of step " << ctx.step);

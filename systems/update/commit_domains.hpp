@@ -19,6 +19,14 @@ namespace loom {
 void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
                     std::vector<Edges<2>>& edges);
 
+// J^k of domain k: the mean nodal J of its pressure nodes (an edge's two ends, a triangle's corners).
+double domain_nodal_jacobian(const Nodes<2>& nodes, const Edges<2>& e, Index k);
+// The isochoric part of b^e with the volume ratio J: (J^2 / det b^e)^(1/3) b^e.
+Mat3 with_volume_ratio(const Mat3& be, double J);
+// b^e_n <- with_volume_ratio(b^e_n, J^k) (eq 56's back projection; domains with j_projection, after
+// update_nodal_jacobian).
+void project_volumetric_part(const Nodes<2>& nodes, Edges<2>& e);
+
 // J^l *= j^l from the domains' det f of the step (eq 56).
 void update_nodal_jacobian(const std::vector<Edges<2>>& edges, Nodes<2>& nodes);
 

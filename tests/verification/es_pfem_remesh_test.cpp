@@ -4,7 +4,7 @@
 //     the sheared points flips diagonals, and the new edges take b_bar from the nearest old edge and J from
 //     the particles. Every edge has the same b^e and every particle the same J = det F, so the transfer is
 //     exact: u at every node, J^l = det F, det b^e = J^2 and one b^e for all edges (also when it flows
-//     plastically), to round-off.
+//     plastically, and with body[].j_projection, which projects every edge after every step), to round-off.
 //  2. A resting yield-stress block (tau_eq < tau0 everywhere) remeshed before each of 1000 steps does not
 //     creep: after the first step u, J^l and b^e do not change.
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@
 namespace loom {
 namespace {
 
-std::string homogeneous_scene(const Eigen::Matrix2d& F, int steps, const std::string& plastic) {
+std::string homogeneous_scene(const Eigen::Matrix2d& F, int steps, const std::string& plastic, bool j_projection) {
   char ux[160], uy[160];
   std::snprintf(ux, sizeof ux, "t * (%.17g * x + %.17g * y)", F(0, 0) - 1.0, F(0, 1));
   std::snprintf(uy, sizeof uy, "t * (%.17g * x + %.17g * y)", F(1, 0), F(1, 1) - 1.0);
@@ -30,6 +30,7 @@ std::string homogeneous_scene(const Eigen::Matrix2d& F, int steps, const std::st
   s += "[solver]\nresidual_relative = 1e-13\nresidual_absolute = 1e-14\n";
   s += "[[material]]\nname = \"m\"\nmodel = \"hencky_perzyna\"\nE = 10.0\nnu = 0.3\n" + plastic;
   s += "[[body]]\nname = \"block\"\nmaterial = \"m\"\nelement = \"es_up\"\nalpha_stab = 0.5\n";
+  if (j_projection) s += "j_projection = true\n";
   s += "mesh = { generator = \"rectangle\", origin = [0.0, 0.0], size = [1.0, 1.0], divisions = [6, 6], pattern = \"right\" }\n";
   int side = 0;
   for (const char* box : {"[[0.0, 0.0], [0.0, 1.0]]", "[[1.0, 0.0], [1.0, 1.0]]", "[[0.0, 0.0], [1.0, 0.0]]", "[[0.0, 1.0], [1.0, 1.0]]"})
@@ -40,12 +41,12 @@ std::string homogeneous_scene(const Eigen::Matrix2d& F, int steps, const std::st
   return s;
 }
 
-void check_homogeneous(const std::string& plastic) {
-  SCOPED_TRACE(plastic.empty() ? "elastic" : "plastic");
+void check_homogeneous(const std::string& plastic, bool j_projection = false) {
+  SCOPED_TRACE(std::string(plastic.empty() ? "elastic" : "plastic") + (j_projection ? ", J projection every step" : ""));
   Eigen::Matrix2d F;
   F << 1.1, -0.9, 0.05, 0.95;  // shear to the left: the 'right' diagonals become the long ones and flip
   const int steps = 6;
-  const SceneSpec scene = testing::scene_from_text(homogeneous_scene(F, steps, plastic));
+  const SceneSpec scene = testing::scene_from_text(homogeneous_scene(F, steps, plastic, j_projection));
   testing::TempDir dir("es_pfem_homogeneous");
   auto run = testing::make_fem_run(scene, dir.path());
   const RunSummary summary = run->run();
@@ -67,9 +68,9 @@ void check_homogeneous(const std::string& plastic) {
       be_spread = std::max(be_spread, (e.be_n[k] - be0).cwiseAbs().maxCoeff());
       det_error = std::max(det_error, std::abs(std::sqrt(e.be_n[k].determinant()) - J));
     }
-  std::printf("[es_pfem homogeneous] %s: %g connectivity changes, max |u - u_exact| %.1e, |J^l - det F| %.1e, b^e spread %.1e, "
+  std::printf("[es_pfem homogeneous] %s%s: %g connectivity changes, max |u - u_exact| %.1e, |J^l - det F| %.1e, b^e spread %.1e, "
               "|sqrt(det b^e) - J| %.1e\n",
-              plastic.empty() ? "elastic" : "plastic", changes, u_error, J_error, be_spread, det_error);
+              plastic.empty() ? "elastic" : "plastic", j_projection ? ", J projection" : "", changes, u_error, J_error, be_spread, det_error);
   EXPECT_LE(u_error, 1e-12);
   EXPECT_LE(J_error, 1e-12);
   EXPECT_LE(be_spread, 1e-12);
@@ -79,6 +80,7 @@ void check_homogeneous(const std::string& plastic) {
 TEST(EsPfemRemesh, HomogeneousDeformationIsTransferredExactly) {
   check_homogeneous("");
   check_homogeneous("tau0 = 0.05\nviscosity = 0.1\n");  // flows plastically, still homogeneous
+  check_homogeneous("tau0 = 0.05\nviscosity = 0.1\n", true);  // the projection of every edge after every step
 }
 
 TEST(EsPfemRemesh, RestingYieldStressBlockDoesNotCreep) {
