@@ -39,6 +39,7 @@
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/timing/timers.hpp"
 #include "perf/fem_bench_setup.hpp"
+#include "perf/newton_iteration_timing.hpp"
 #include "perf/solver_threads.hpp"
 #include "systems/assemble/assemble_system.hpp"
 #include "systems/solve/solve_linear_step.hpp"
@@ -71,7 +72,6 @@ void BM_NewtonStep(benchmark::State& state, const char* linear) {  // linear: "c
   const auto kind =
       std::string(linear) == "umfpack" ? loom::LinearSolverKind::umfpack : loom::LinearSolverKind::cholmod;
   loom::LinearSolve solver(kind);
-  loom::Timers timers;
   const std::vector<loom::Vec2> start(run.nodes.u.begin(), run.nodes.u.end());
   auto restore = [&] { std::copy(start.begin(), start.end(), run.nodes.u.begin()); };
   struct Restore {  // leaves the shared run at its mid-Newton iterate for the next benchmark
@@ -79,58 +79,12 @@ void BM_NewtonStep(benchmark::State& state, const char* linear) {  // linear: "c
     ~Restore() { f(); }
   } restore_at_exit{restore};
 
-  // Warm-up: symbolic analysis and first factorization (the run keeps the analysis afterwards).
-  loom::assemble_system(run.ctx, loom::AssemblyMode::residual_and_tangent, run.materials, run.nodes, run.cells, run.bc,
-                        run.quad, run.system);
-  const auto w0 = Clock::now();
-  const bool factorized = solver.factorize(run.system.pattern);
-  const double first_factorize = seconds(w0, Clock::now());
-  if (!factorized) {
-    state.SkipWithError("the tangent could not be factorized");
-    return;
-  }
-
-  double t_assemble = 0, t_solve = 0, t_update = 0;
-  Index inverted = 0;
-  bool singular = false;
-  timers.clear();
-  for (auto _ : state) {
-    restore();
-    const auto t0 = Clock::now();
-    inverted += loom::assemble_system(run.ctx, loom::AssemblyMode::residual_and_tangent, run.materials, run.nodes,
-                                      run.cells, run.bc, run.quad, run.system)
-                    .inverted_cells;
-    const auto t1 = Clock::now();
-    singular |= loom::solve_linear_step(run.nodes, run.bc, solver, run.system, timers) != loom::LinearSolveStatus::ok;
-    const auto t2 = Clock::now();
-    loom::update_iterate(1.0, run.system, run.nodes);
-    const auto t3 = Clock::now();
-    benchmark::DoNotOptimize(run.nodes.u.data());
-    t_assemble += seconds(t0, t1), t_solve += seconds(t1, t2), t_update += seconds(t2, t3);
-    state.SetIterationTime(seconds(t0, t3));
-  }
-  if (inverted != 0 || singular) {
-    state.SkipWithError("inverted cells or a singular tangent: the timings are not those of a Newton iteration");
-    return;
-  }
-  const auto stats = timers.snapshot();
-  const double t_factorize = stats.at("newton/solve/factorize").total;
-  const double t_back = stats.at("newton/solve/back_substitute").total;
-  const double t_scatter = t_solve - t_factorize - t_back;
-  const double total = t_assemble + t_solve + t_update;
-
-  using benchmark::Counter;
-  auto per_iteration_ms = [](double s) { return Counter(1e3 * s, Counter::kAvgIterations); };
-  state.counters["assemble_ms"] = per_iteration_ms(t_assemble);
-  state.counters["factorize_ms"] = per_iteration_ms(t_factorize);
-  state.counters["back_substitute_ms"] = per_iteration_ms(t_back);
-  state.counters["scatter_ms"] = per_iteration_ms(t_scatter);
-  state.counters["update_ms"] = per_iteration_ms(t_update);
-  state.counters["total_ms"] = per_iteration_ms(total);
-  state.counters["outside_solver"] = (t_assemble + t_scatter + t_update) / total;
-  state.counters["first_factorize_ms"] = 1e3 * first_factorize;
-  state.counters["dofs"] = double(run.system.dofs.n_free);
-  state.counters["nnz"] = double(run.system.pattern.matrix.nonZeros());
+  auto assemble = [&] {
+    return loom::assemble_system(run.ctx, loom::AssemblyMode::residual_and_tangent, run.materials, run.nodes, run.cells, run.bc,
+                                 run.quad, run.system)
+        .inverted_cells;
+  };
+  if (!loom::perf::time_newton_iterations(state, restore, assemble, run.nodes, run.bc, solver, run.system)) return;
   state.counters["blas_threads"] = blas_set ? double(solver_threads) : -1.0;
   state.counters["omp_threads"] = omp_set ? double(solver_threads) : -1.0;
   state.SetItemsProcessed(state.iterations() * n_cells);
