@@ -48,11 +48,14 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   auto note_blocks = [&] {
     for (int b = 0; b < p.blocks(); ++b) block_reference[std::size_t(b)] = std::max(block_reference[std::size_t(b)], p.block_norm(b));
   };
+  const double momentum_0 = p.block_norm(0);
   auto blocks_converged = [&](bool first_assembly) {
     for (int b = 0; b < p.blocks(); ++b) {
       const double n = p.block_norm(b);
+      // Momentum: against its first norm and the forces in balance, as the one-block test; pressure: against
+      // the largest norm of the step (it starts at exactly 0 from rest).
       double reference = first_assembly ? 0.0 : block_reference[std::size_t(b)];
-      if (b == 0) reference = std::max(reference, p.force_scale());
+      if (b == 0) reference = std::max(first_assembly ? 0.0 : momentum_0, p.force_scale());
       if (!(n <= s.residual_absolute || n <= s.residual_relative * reference)) return false;
     }
     return true;

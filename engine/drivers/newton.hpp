@@ -49,8 +49,9 @@ class NonlinearProblem {
   // Norm of the forces in balance at the last assembly (external loads, reactions); 0 if unknown.
   virtual double force_scale() const { return 0.0; }
   // Residual blocks tested separately (seed 001 §3.6: the momentum and the pressure residuals, in force and
-  // volume units): block 0 is the momentum one, measured against the force scale; every block must fall
-  // below residual_relative times the largest norm it had in the step (or below residual_absolute).
+  // volume units): block 0 is the momentum one, measured like the single residual (against max(|r_0|, force
+  // scale)); the others against the largest norm they had in the step (they start at 0 from rest). Each must
+  // fall below residual_relative times its reference (or below residual_absolute).
   virtual int blocks() const { return 1; }
   virtual double block_norm(int /*block*/) const { return residual_norm(); }
 };

@@ -1,5 +1,7 @@
 #include "engine/methods/build_domains.hpp"
 
+#include <algorithm>
+
 #include "engine/mesh/smoothing_edges.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 #include "systems/assemble/smoothing_geometry.hpp"
@@ -21,7 +23,7 @@ void build_domains(const Nodes<2>& nodes, const std::vector<Cells>& cells, const
     for (auto& e : made) {
       if (e.size() == 0) continue;
       e.cell_block = Index(b);
-      e.j_projection = cb.size() > 0 && j_projection[std::size_t(cb.body[0])];
+      if (std::count(j_projection.begin(), j_projection.end(), 1) > 0) e.j_projection = j_projection;
       compute_smoothing_geometry(nodes, cb, e);
       edges.push_back(std::move(e));
     }

@@ -27,6 +27,7 @@ struct DomainSnapshot {
   std::map<Key, Index> domain_of;  // key -> index into midpoint / be
   std::vector<Vec2> midpoint;
   std::vector<Mat3> be;
+  std::vector<Index> body;  // a new domain takes its history from the nearest old domain of its own body
   std::map<Key, double> reference_area;  // sorted corners -> A_0 of a triangle of a domain block
 };
 

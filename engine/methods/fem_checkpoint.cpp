@@ -8,6 +8,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/io/run_files.hpp"
+#include "engine/mesh/colouring.hpp"
 #include "engine/methods/fem_method.hpp"
 #include "engine/methods/run_output.hpp"
 
@@ -78,6 +79,8 @@ CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
     const std::vector<Index> stencil = m_.edges[k].stencil.nodes.values();
     r.store("domains/" + std::to_string(k), m_.edges[k]);
     if (!pfem_) r.expect(m_.edges[k].stencil.nodes.values() == stencil, "has other integration domains (block " + std::to_string(k) + ")");
+    for (Index v : m_.edges[k].stencil.nodes) r.expect(v >= 0 && v < m_.nodes.size(), "has integration domains on nodes it does not hold");
+    colour_cells(m_.edges[k].stencil, m_.nodes.size());  // the colour groups are not columns: rebuilt as the builder did
   }
   if (pfem_) {
     for (std::size_t b = 0; b < topology_.triangles.size(); ++b) {

@@ -99,7 +99,7 @@ void FemRun::build_graph() {
 
   if (pfem_) {
     g.name_store(&topology_, "pfem_topology");
-    const auto remesh = g.add_node("remesh", {{&m_.materials}, {&topology_, &m_.nodes, &m_.cells, &m_.quad, &m_.bc, &m_.system}},
+    const auto remesh = g.add_node("remesh", {{&m_.materials}, {&topology_, &m_.nodes, &m_.cells, &m_.quad, &m_.edges, &m_.bc, &m_.system}},
                                    [this] { remesh_node(); },
                                    "triangulate + alpha shape, transfer the history, rebuild dofs/sparsity where the connectivity changed");
     g.run_if(remesh, nullptr, [this] {
@@ -235,6 +235,13 @@ void FemRun::set_equilibrium_acceleration() {
       const double m = m_.nodes.lumped_mass[i];
       m_.nodes.a_n[i][d] = dofs.kind[std::size_t(dof)] == DofKind::free && m > 0.0 ? -m_.system.residual_full[dof] / m : 0.0;
     }
+  // A tied mid-node (PFEM TRI6) follows its masters, so that the integrator stays linear in the tie.
+  for (const Tie& tie : dofs.ties) {
+    const int d = tie.dof % dofs.per_node;
+    if (d < 2)
+      m_.nodes.a_n[tie.dof / dofs.per_node][d] =
+          0.5 * (m_.nodes.a_n[tie.master[0] / dofs.per_node][d] + m_.nodes.a_n[tie.master[1] / dofs.per_node][d]);
+  }
 }
 
 void FemRun::write_initial_state() {

@@ -63,6 +63,9 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
     throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (size or scale too extreme?)");
   }
   build_domains(nodes, cells, j_projection, edges);
+  for (auto& e : edges)
+    e.reference_geometry = e.size() > 0 && scene.materials[std::size_t(scene.bodies[std::size_t(e.stencil.body[0])].material)].model ==
+                                                MaterialModel::linear_elastic;
   set_reference_areas(nodes, cells);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
 

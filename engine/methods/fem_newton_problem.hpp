@@ -51,7 +51,16 @@ class FemNewtonProblem final : public NonlinearProblem {
   }
   std::string solve_failure() const override { return solver_.failure().empty() ? "the tangent matrix is singular" : solver_.failure(); }
   void update(double step) override { update_iterate(step, system_, nodes_); }
-  double increment_norm() const override { return system_.increment.norm(); }
+  // |du| on the displacement dofs when a pressure is an unknown too (stress units do not compare with
+  // step_change_norm's lengths).
+  double increment_norm() const override {
+    if (blocks() == 1) return system_.increment.norm();
+    const DofMap& dofs = system_.dofs;
+    double sum = 0.0;
+    for (Index dof = 0; dof < dofs.n_dofs(); ++dof)
+      if (const Index eq = dofs.equation[std::size_t(dof)]; eq != kNoIndex && dof % 3 != 2) sum += system_.increment[eq] * system_.increment[eq];
+    return std::sqrt(sum);
+  }
   double step_change_norm() const override {
     double s = 0.0;
     for (Index i = 0; i < nodes_.size(); ++i) s += (nodes_.u[i] - nodes_.u_n[i]).squaredNorm();

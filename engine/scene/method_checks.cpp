@@ -24,7 +24,7 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
   if (!grid.present()) root.table("scene").error("method", "method = \"mpm\" needs a background grid: add a [grid] table");
   if (s.time.integrator == Integrator::euler_backward || s.time.integrator == Integrator::bossak)
     time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
-  if (root.table("solver").has("tangent")) root.table("solver").error("tangent", "method mpm assembles its tangent at every iteration");
+  if (s.solver.tangent == TangentUpdate::once_per_step) root.table("solver").error("tangent", "method mpm assembles its tangent at every iteration");
   if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass (seed 003 §5)");
   if (s.bodies.size() > 1) bodies[1].error("", "method mpm supports one body for now");
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {

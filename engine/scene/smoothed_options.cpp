@@ -11,6 +11,10 @@ void read_hencky_perzyna(MaterialSpec& m, const TableReader& t) {
   if (!hp) return;
   if (t.has("tau0")) m.tau0 = t.real("tau0");
   m.viscosity = t.real("viscosity");
+  if (t.has("viscosity") && !t.has("tau0")) t.error("viscosity", "viscosity acts above the yield stress: give tau0 too (without it the material is elastic)");
+  // tau0 = 0 and mu = 0 leave no deviatoric stress once it flows: the tangent is singular.
+  if (t.has("tau0") && m.tau0 == 0.0 && !(m.viscosity > 0.0))
+    t.error("tau0", "tau0 = 0 needs viscosity > 0 (a Maxwell fluid); with both zero the material carries no shear stress");
 }
 
 void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
@@ -32,6 +36,13 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
     if (m.model != MaterialModel::hencky_perzyna && m.model != MaterialModel::linear_elastic)
       t.error("element", std::string(element) + " takes model = \"hencky_perzyna\" (finite strain, with history) or \"linear_elastic\" "
                                                 "(geometrically linear); material \"" + m.name + "\" is another model");
+    if (m.model == MaterialModel::linear_elastic && (s.scene.method == Method::es_pfem || b.j_projection))
+      t.error(s.scene.method == Method::es_pfem ? "material" : "j_projection",
+              "linear_elastic is geometrically linear on a fixed mesh; remeshing and the J projection act on the finite-strain "
+              "history of hencky_perzyna");
+    // The smoothed elements assemble their inertia with the lumped mass of their triangles only.
+    if (s.time.integrator != Integrator::static_ && s.time.mass == MassKind::consistent)
+      t.error("element", std::string(element) + " integrates the inertia with the lumped mass: set time.mass = \"lumped\"");
     if (s.scene.method != Method::fem && s.scene.method != Method::es_pfem)
       t.error("element", std::string(element) + " runs with method = \"fem\" (fixed mesh) or \"es_pfem\" (remeshed); method " +
                              method_name(s.scene.method) + " takes other elements");

@@ -27,7 +27,12 @@ struct Edges {
   // true: each domain is one whole triangle (fem_up, fem_u), not the smoothing domain of an edge.
   bool whole_triangles = false;
   Index cell_block = 0;  // the triangle block (index into the run's Cells stores) the domains were built from
-  bool j_projection = false;  // b^e's volumetric part from the nodal J after every step (seed 001 eq 56)
+  // Per body (indexed by the stencil's body column): b^e's volumetric part from the nodal J after every step
+  // (seed 001 eq 56). Empty: no body asks for it.
+  std::vector<char> j_projection;
+  // Geometrically linear material (linear_elastic): the geometry stays that of the reference mesh, so that
+  // strains and forces are those of small-displacement theory over any number of steps.
+  bool reference_geometry = false;
   // The triangles of the owning cell block that make up the domain (2 per domain; the second is kNoIndex
   // on the boundary and for triangle domains).
   Column<Index> triangles;

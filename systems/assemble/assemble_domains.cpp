@@ -1,5 +1,6 @@
 #include "systems/assemble/assemble_domains.hpp"
 
+#include "engine/mesh/triangle_geometry.hpp"
 #include "systems/assemble/cell_scatterer.hpp"
 #include "systems/assemble/elements/smoothed_domain.hpp"
 
@@ -60,6 +61,15 @@ void assemble_domain_block(const StepContext& ctx, bool tangent, const std::vect
     if (mixed) assemble_domains<3, true>(ctx, tangent, materials, nodes, bc, domains, scatter, system, inverted);
     else assemble_domains<3, false>(ctx, tangent, materials, nodes, bc, domains, scatter, system, inverted);
   }
+}
+
+Index inverted_triangles(const Nodes<2>& nodes, const Cells& cells) {
+  std::atomic<Index> bad{0};
+  for_each_index(cells.size(), [&](Index c) {
+    if (!(signed_area(nodes.position(cells.node(c, 0)), nodes.position(cells.node(c, 1)), nodes.position(cells.node(c, 2))) > 0.0))
+      bad.fetch_add(1, std::memory_order_relaxed);
+  });
+  return bad.load();
 }
 
 void assemble_triangle_pressure_terms(bool tangent, const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes,

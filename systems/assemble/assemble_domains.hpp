@@ -27,4 +27,8 @@ void assemble_triangle_pressure_terms(bool tangent, const std::vector<BodyMateri
                                       const BoundaryConditions<2>& bc, const Cells& cells, const CellScatter& scatter,
                                       LinearSystem& system);
 
+// Triangles of a seed-001 block that are inverted or degenerate at the iterate: the domains' det f > 0 does
+// not see a triangle folding between them.
+Index inverted_triangles(const Nodes<2>& nodes, const Cells& cells);
+
 }  // namespace loom

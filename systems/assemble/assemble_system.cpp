@@ -171,6 +171,7 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
       case Formulation::es_u:
       case Formulation::fem_u: break;  // everything is on the domains
     }
+    if (integrates_on_domains(cells[k].formulation)) inverted += inverted_triangles(nodes, cells[k]);
   }
   if (domains)
     for (std::size_t e = 0; e < domains->size(); ++e)

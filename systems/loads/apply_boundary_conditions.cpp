@@ -46,7 +46,10 @@ void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& 
       if (exprs[0] == kNoIndex && exprs[1] == kNoIndex) continue;
       const Index* n = cb.cell_nodes(c);
       const Vec2 X[3] = {nodes.X[n[0]], nodes.X[n[1]], nodes.X[n[2]]};
-      const double area = 0.5 * ((X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[2] - X[0]).x() * (X[1] - X[0]).y());
+      // Seed 001's triangles know their reference area; a remeshed triangle's corners in X need not form one.
+      const double area = integrates_on_domains(cb.formulation) && cb.measure.used()
+                              ? cb.measure[c]
+                              : 0.5 * ((X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[2] - X[0]).x() * (X[1] - X[0]).y());
       const double rho = materials[std::size_t(body)].density;
       auto add_point = [&](const double* l, double weight, const double* N, int n_nodes) {
         const Vec2 Xq = l[0] * X[0] + l[1] * X[1] + l[2] * X[2];

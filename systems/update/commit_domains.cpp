@@ -49,7 +49,9 @@ double domain_nodal_jacobian(const Nodes<2>& nodes, const Edges<2>& e, Index k) 
 Mat3 with_volume_ratio(const Mat3& be, double J) { return be * (std::pow(J, 2.0 / 3.0) / std::cbrt(be.determinant())); }
 
 void project_volumetric_part(const Nodes<2>& nodes, Edges<2>& e) {
-  for_each_index(e.size(), [&](Index k) { e.be_n[k] = e.be[k] = with_volume_ratio(e.be_n[k], domain_nodal_jacobian(nodes, e, k)); });
+  for_each_index(e.size(), [&](Index k) {
+    if (e.j_projection[std::size_t(e.stencil.body[k])]) e.be_n[k] = e.be[k] = with_volume_ratio(e.be_n[k], domain_nodal_jacobian(nodes, e, k));
+  });
 }
 
 void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
@@ -58,9 +60,10 @@ void commit_domains(const StepContext& ctx, const std::vector<Cells>& cells, Nod
   domain_stress_to_cells(edges, quad);
   if (nodes.J_node.used()) update_nodal_jacobian(edges, nodes);
   for (Edges<2>& e : edges)
-    if (e.j_projection) project_volumetric_part(nodes, e);
+    if (!e.j_projection.empty()) project_volumetric_part(nodes, e);
   Index bad = 0;
-  for (Edges<2>& e : edges) bad += compute_smoothing_geometry(nodes, cells[std::size_t(e.cell_block)], e);
+  for (Edges<2>& e : edges)
+    if (!e.reference_geometry) bad += compute_smoothing_geometry(nodes, cells[std::size_t(e.cell_block)], e);
   LOOM_CHECK(bad == 0, RunError, bad << " smoothing domains are inverted in the converged configuration of step " << ctx.step);
 }
 

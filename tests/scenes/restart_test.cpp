@@ -77,6 +77,14 @@ TEST(Restart, EsFemBossakContinuesBitForBit) {
                             "cantilever-dynamic-es_000040.vtu");
 }
 
+// es_pfem: the edges are rebuilt at every remesh (every second step here, 14 connectivity changes in 30 steps);
+// the checkpoint of step 16 holds remeshed edges, and step 17 runs on them without a remesh (their colouring
+// is rebuilt on restore: it is not a column).
+TEST(Restart, EsPfemContinuesBitForBitAcrossRemeshes) {
+  expect_restart_reproduces("es_pfem", kSource + "/tests/scenes/es_pfem_bingham_column.toml", {"output.every=10"}, 16, 30,
+                            "es-pfem-bingham-column_000030.vtu");
+}
+
 // The moderately constrained block first changes its connectivity at step 138 and then 118 more times up
 // to step 220: the checkpoint of step 150 holds a remeshed mesh (not the generated one), and the continued
 // run remeshes it on, with TRI6 mid-nodes re-created at every remesh.

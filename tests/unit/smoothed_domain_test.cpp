@@ -113,6 +113,23 @@ TEST(SmoothedDomain, PressureResidualAndStress) {
   EXPECT_NEAR(std::sqrt(st.be.determinant()), J, 1e-12);
 }
 
+// The entries against seed 001 eqs 42 and 48 written out: K_pp,K,ab = A (1 + d_ab) / (12 K) and
+// K_stab,ab = (alpha / G) (A (1 + d_ab) / 12 - A / 9); R_p = -(K_pp,K + K_stab) p.
+TEST(TrianglePressureTerms, EntriesAreThoseOfTheSeed) {
+  const double A0 = 0.6, inv_K = 0.25, a_over_G = 2.0;
+  Mat3 K = Mat3::Zero();
+  Vec3 r = Vec3::Zero();
+  const Vec3 p(0.3, -1.0, 2.0);
+  triangle_pressure_terms(A0, inv_K, a_over_G, p, r, &K);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double delta = a == b ? 1.0 : 0.0;
+      const double expected = -(A0 * (1 + delta) / 12.0 * inv_K + a_over_G * (A0 * (1 + delta) / 12.0 - A0 / 9.0));
+      EXPECT_NEAR(K(a, b), expected, 1e-15);
+    }
+  EXPECT_LT((r - K * p).norm(), 1e-15);
+}
+
 TEST(TrianglePressureTerms, MassAndProjectionMatrices) {
   const double A0 = 0.6, inv_K = 0.25, a_over_G = 2.0;
   Mat3 K = Mat3::Zero();

@@ -14,7 +14,8 @@
 // The element terms of R_p (-K_pp,K p - K_stab p, eqs 42 and 48) are triangle_pressure_terms below.
 //
 // With material linear_elastic all geometric terms are dropped (seed 001 §4.1, Cook's membrane):
-// eps = sym(f - I), P = 2 mu dev eps + p I (mixed) or lambda tr eps I + 2 mu eps, R_p = N_p tr(eps) V_n.
+// eps = eps_n + sym(f - I), P = 2 mu dev eps + p I (mixed) or lambda tr eps I + 2 mu eps, R_p = N_p tr(eps) V_n;
+// the domain's history b^e holds I + 2 eps.
 #pragma once
 
 #include <cmath>
@@ -101,9 +102,13 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, ty
     if constexpr (Mixed) {
       Mat3 tau_p, P_p;
       Mat9 c_p, A_p;
-      pressure_kirchhoff(det_f, p, tau_p, c_p);
-      first_piola(f, tau_p, c_p, 1.0, P_p, A_p);
-      P += P_p, A += A_p;
+      if (K) {
+        pressure_kirchhoff(det_f, p, tau_p, c_p);
+        first_piola(f, tau_p, c_p, 1.0, P_p, A_p);
+        P += P_p, A += A_p;
+      } else {
+        P += p * det_f * f.inverse().transpose();
+      }
       out.sigma += p * Mat3::Identity();
       const double lnJ = std::log(h.J), V0 = d.V_n / J_n;
       const NodalVectors<NEN> bhat = d.b * f.inverse().topLeftCorner<2, 2>();  // row I: (f^-T b~_I)^T
@@ -119,15 +124,18 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, ty
     detail::add_first_piola<NEN, Mixed>(d, P, K ? &A : nullptr, r, K);
     return true;
   } else if constexpr (std::is_same_v<MaterialT, LinearElastic>) {
+    // The history holds I + 2 eps_n (the small-strain counterpart of b^e), so that the total strain is
+    // eps_n + sym(f - I) over any number of steps; F_total = I + 2 eps_n / 2 + (f - I) feeds Hooke.
+    const Mat3 F_total = f + 0.5 * (d.be_n - Mat3::Identity());
     Mat3 P;
     Mat9 A;
     if constexpr (Mixed) {
       // Deviatoric Hooke plus the pressure unknown; the constraint is tr(eps) - p / K = 0.
       const LinearElastic shear_only{-2.0 * material.mu / 3.0, material.mu};
-      shear_only.stress_tangent(f, P, A);
+      shear_only.stress_tangent(F_total, P, A);
       P += p * Mat3::Identity();
       for (int a = 0; a < NEN; ++a) {
-        r[L::p(a)] += d.Np[a] * (f.topLeftCorner<2, 2>().trace() - 2.0) * d.V_n;
+        r[L::p(a)] += d.Np[a] * (F_total.topLeftCorner<2, 2>().trace() - 2.0) * d.V_n;
         if (K)
           for (int c = 0; c < NEN; ++c)
             for (int i = 0; i < 2; ++i) {
@@ -136,9 +144,9 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, ty
             }
       }
     } else {
-      material.stress_tangent(f, P, A);
+      material.stress_tangent(F_total, P, A);
     }
-    out.be = d.be_n, out.sigma = P, out.j = det_f;
+    out.be = Mat3::Identity() + (F_total + F_total.transpose() - 2.0 * Mat3::Identity()), out.sigma = P, out.j = det_f;
     detail::add_first_piola<NEN, Mixed>(d, P, K ? &A : nullptr, r, K);
     return true;
   } else {
