@@ -16,6 +16,11 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   FrameArray velocity{"velocity", 3, {}};
   FrameArray phi{"phi", 1, {}};
   if (nodes.phi_n.used()) phi.values.assign(nodes.phi_n.values().begin(), nodes.phi_n.values().end());
+  // u-p elements of seed 001: the nodal unknown p, the mean stress positive in tension (as MPM's mean_stress),
+  // and the particles' volume ratio J^l of es_pfem.
+  FrameArray mean_stress{"mean_stress", 1, {}}, nodal_J{"J_node", 1, {}};
+  if (nodes.p_n.used()) mean_stress.values.assign(nodes.p_n.values().begin(), nodes.p_n.values().end());
+  if (nodes.J_node.used()) nodal_J.values.assign(nodes.J_node.values().begin(), nodes.J_node.values().end());
   if (nodes.v_n.used()) velocity.values.assign(3 * std::size_t(n), 0.0);
   for_each_index(n, [&](Index i) {
     const Vec2 x = nodes.position_n(i);
@@ -74,6 +79,8 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   frame.point_arrays.push_back(std::move(displacement));
   if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
   if (!phi.values.empty()) frame.point_arrays.push_back(std::move(phi));
+  if (!mean_stress.values.empty()) frame.point_arrays.push_back(std::move(mean_stress));
+  if (!nodal_J.values.empty()) frame.point_arrays.push_back(std::move(nodal_J));
   frame.cell_arrays = {std::move(stress), std::move(pressure), std::move(J), std::move(von_mises), std::move(body)};
   frame.notes = {{"pressure_definition", kPressureDefinition}};
 }

@@ -327,3 +327,36 @@ TEST(OutputReadBack, ProfileNestsStepSystemIterationAndSubPhase) {
 
 }  // namespace
 }  // namespace loom::testing
+
+namespace loom::testing {
+namespace {
+
+// Seed 001's u-p elements write the nodal pressure unknown (mean_stress, positive in tension) and es_pfem the
+// particles' J; the cells' pressure (-tr sigma / 3, from the edges' stress) is its opposite on average.
+TEST(OutputReadBack, SmoothedElementsWriteTheNodalPressureAndJ) {
+  TempDir out("readback_es_pfem");
+  const Command c = run_loom({"run", std::string(LOOM_SOURCE_DIR) + "/tests/scenes/es_pfem_bingham_column.toml", "--quiet", "--out", out.path()});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const VtuFrame f = read_vtu(out.file("es-pfem-bingham-column_000030.vtu"));
+  vtkDataArray* p = f.point("mean_stress");
+  vtkDataArray* J = f.point("J_node");
+  ASSERT_NE(p, nullptr);
+  ASSERT_NE(J, nullptr);
+  ASSERT_EQ(p->GetNumberOfTuples(), f.grid->GetNumberOfPoints());
+  double p_mean = 0.0, J_min = 1e300, J_max = 0.0;
+  for (vtkIdType i = 0; i < p->GetNumberOfTuples(); ++i) {
+    p_mean += p->GetTuple1(i) / double(p->GetNumberOfTuples());
+    J_min = std::min(J_min, J->GetTuple1(i)), J_max = std::max(J_max, J->GetTuple1(i));
+  }
+  vtkDataArray* cell_pressure = f.cell("pressure");
+  ASSERT_NE(cell_pressure, nullptr);
+  double q_mean = 0.0;
+  for (vtkIdType c = 0; c < cell_pressure->GetNumberOfTuples(); ++c) q_mean += cell_pressure->GetTuple1(c) / double(cell_pressure->GetNumberOfTuples());
+  EXPECT_LT(p_mean, 0.0);  // a column under its weight is in compression
+  EXPECT_NEAR(q_mean, -p_mean, 0.2 * std::abs(p_mean));
+  EXPECT_GT(J_min, 0.0);
+  EXPECT_LT(J_min, 1.0);  // compressed somewhere (rho g H / K = 5 % at the base)
+}
+
+}  // namespace
+}  // namespace loom::testing
