@@ -54,12 +54,7 @@ class FemNewtonProblem final : public NonlinearProblem {
   // |du| on the displacement dofs when a pressure is an unknown too (stress units do not compare with
   // step_change_norm's lengths).
   double increment_norm() const override {
-    if (blocks() == 1) return system_.increment.norm();
-    const DofMap& dofs = system_.dofs;
-    double sum = 0.0;
-    for (Index dof = 0; dof < dofs.n_dofs(); ++dof)
-      if (const Index eq = dofs.equation[std::size_t(dof)]; eq != kNoIndex && dof % 3 != 2) sum += system_.increment[eq] * system_.increment[eq];
-    return std::sqrt(sum);
+    return blocks() == 1 ? system_.increment.norm() : block_part_norm(system_.increment, false);
   }
   double step_change_norm() const override {
     double s = 0.0;
@@ -75,14 +70,7 @@ class FemNewtonProblem final : public NonlinearProblem {
   // u-p formulations (seed 001): the momentum and the pressure residuals are converged separately.
   int blocks() const override { return nodes_.p_n.used() && system_.dofs.per_node == 3 ? 2 : 1; }
   double block_norm(int block) const override {
-    if (blocks() == 1) return residual_norm();
-    const DofMap& dofs = system_.dofs;
-    double sum = 0.0;
-    for (Index dof = 0; dof < dofs.n_dofs(); ++dof) {
-      const Index eq = dofs.equation[std::size_t(dof)];
-      if (eq != kNoIndex && (dof % 3 == 2) == (block == 1)) sum += system_.residual[eq] * system_.residual[eq];
-    }
-    return std::sqrt(sum);
+    return blocks() == 1 ? residual_norm() : block_part_norm(system_.residual, block == 1);
   }
   bool prescribed_pending() const override {
     for (const auto& p : bc_.prescribed) {
@@ -102,6 +90,15 @@ class FemNewtonProblem final : public NonlinearProblem {
   LinearSystem& system_;
   LinearSolve& solver_;
   Timers& timers_;
+  // Norm of the entries of an equation-indexed vector that belong to the pressure dofs (or to the others).
+  double block_part_norm(const Eigen::VectorXd& v, bool pressure) const {
+    const DofMap& dofs = system_.dofs;
+    double sum = 0.0;
+    for (Index dof = 0; dof < dofs.n_dofs(); ++dof)
+      if (const Index eq = dofs.equation[std::size_t(dof)]; eq != kNoIndex && (dof % dofs.per_node == 2) == pressure) sum += v[eq] * v[eq];
+    return std::sqrt(sum);
+  }
+
   std::vector<Edges<2>>* domains_;
   bool fresh_tangent_ = false;  // a tangent was assembled since the last factorisation
 };

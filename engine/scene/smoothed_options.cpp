@@ -27,6 +27,11 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   } else if (t.has("alpha_stab")) {
     t.error("alpha_stab", "alpha_stab is used by element = \"es_up\" or \"fem_up\" only");
   }
+  // The third nodal dof is phi or p, one or the other in a run.
+  for (const BodySpec& other : s.bodies)
+    if ((has_pressure(b.element) && has_dilatation(other.element)) || (has_dilatation(b.element) && has_pressure(other.element)))
+      t.error("element", std::string(element) + " and body \"" + other.name + "\"'s " + formulation_name(other.element) +
+                             " cannot share a run: the third nodal unknown is the pressure of one and the dilatation of the other");
   b.j_projection = t.boolean("j_projection");
   if (t.has("j_projection") && !integrates_on_domains(b.element))
     t.error("j_projection", "j_projection is used by the elements es_up, es_u, fem_up and fem_u only");
