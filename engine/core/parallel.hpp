@@ -2,6 +2,8 @@
 // The body must only write to entries owned by its index (or be made race-free by colouring).
 #pragma once
 
+#include <algorithm>
+
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
 
@@ -14,13 +16,14 @@ enum class Execution { serial, parallel };
 // Below this many items the overhead of spawning tasks dominates.
 inline constexpr Index kParallelGrain = 256;
 
+// `grain`: items worth one task (fewer for heavy items, e.g. grid cells holding many particles).
 template <class Body>
-void for_each_index(Index n, Body&& body, Execution exec = Execution::parallel) {
-  if (exec == Execution::serial || n < kParallelGrain) {
+void for_each_index(Index n, Body&& body, Execution exec = Execution::parallel, Index grain = kParallelGrain) {
+  if (exec == Execution::serial || n < grain) {
     for (Index i = 0; i < n; ++i) body(i);
     return;
   }
-  oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<Index>(0, n, kParallelGrain / 4),
+  oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<Index>(0, n, std::max<Index>(1, grain / 4)),
                             [&](const oneapi::tbb::blocked_range<Index>& r) {
                               for (Index i = r.begin(); i != r.end(); ++i) body(i);
                             });
@@ -28,8 +31,8 @@ void for_each_index(Index n, Body&& body, Execution exec = Execution::parallel) 
 
 // Same, over an explicit list of indices (e.g. the cells of one colour).
 template <class Body>
-void for_each_in(const Index* items, Index n, Body&& body, Execution exec = Execution::parallel) {
-  for_each_index(n, [&](Index k) { body(items[k]); }, exec);
+void for_each_in(const Index* items, Index n, Body&& body, Execution exec = Execution::parallel, Index grain = kParallelGrain) {
+  for_each_index(n, [&](Index k) { body(items[k]); }, exec, grain);
 }
 
 }  // namespace loom

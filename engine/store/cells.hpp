@@ -14,7 +14,8 @@ namespace loom {
 
 // quad4: MPM background grids only. stencil3/stencil4: the node stencils of integration domains that no
 // single cell owns (edge-based smoothing domains, engine/store/edges.hpp); they are never output as cells.
-enum class CellType { tri3, tri6, quad4, stencil3, stencil4 };
+// quad9: biquadratic quadrilaterals (engine/mesh/quad9_shape.hpp), corners first, then mid-sides and centre.
+enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9 };
 
 // Element formulation of a cell block: what the assembly computes on its cells.
 //  p1:        linear displacement triangle (tri3, one point);
@@ -48,6 +49,7 @@ inline int nodes_per_cell(CellType t) {
     case CellType::tri3: case CellType::stencil3: return 3;
     case CellType::quad4: case CellType::stencil4: return 4;
     case CellType::tri6: return 6;
+    case CellType::quad9: return 9;
   }
   return 0;
 }
@@ -62,7 +64,7 @@ inline bool integrates_on_domains(Formulation f) {
 }
 inline bool edge_smoothed(Formulation f) { return f == Formulation::es_up || f == Formulation::es_u; }
 inline const char* cell_type_name(CellType t) {
-  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4"};
+  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4", "quad9"};
   return names[int(t)];
 }
 
@@ -76,7 +78,7 @@ struct Cells {
   // Background grids only (MPM): the grid never moves, so its geometry is computed once.
   Column<Index> neighbour;  // one per side (side_corners): the cell across it, kNoIndex on the boundary
   Column<double> measure;   // cell area, L^2
-  Column<Mat32> gradient;   // tri3: dN^a/dx of the corners (constant over the cell), 1/L; quad4: unused
+  Column<Mat32> gradient;   // tri3: dN^a/dx of the corners (constant over the cell), 1/L; quad4, quad9: unused
 
   // Cells grouped by colour: the cells of colour k are by_colour[colour_offsets[k] .. colour_offsets[k+1]).
   std::vector<Index> by_colour;
@@ -93,13 +95,13 @@ struct Cells {
   Index n_colours() const { return colour_offsets.empty() ? 0 : Index(colour_offsets.size()) - 1; }
   const Index* cell_nodes(Index c) const { return nodes.data() + static_cast<std::size_t>(c) * stride; }
   Index node(Index c, int a) const { return nodes[c * stride + a]; }
-  // Corner cells (tri3, quad4): as many sides as corners. Side a of a triangle is the one opposite corner a
-  // (what a walk crosses when barycentric coordinate a is negative); side a of a quadrilateral runs from
-  // corner a to corner a + 1.
-  int sides() const { return stride; }
+  // Corner cells (tri3, quad4) and quad9: as many sides as corners. Side a of a triangle is the one opposite
+  // corner a (what a walk crosses when barycentric coordinate a is negative); side a of a quadrilateral runs
+  // from corner a to corner a + 1 (quad9: through mid-side node 4 + a).
+  int sides() const { return stride == 9 ? 4 : stride; }
   std::pair<Index, Index> side_corners(Index c, int a) const {
     if (stride == 3) return {node(c, (a + 1) % 3), node(c, (a + 2) % 3)};
-    return {node(c, a), node(c, (a + 1) % stride)};
+    return {node(c, a), node(c, (a + 1) % sides())};
   }
 
   template <class Visit>

@@ -30,6 +30,12 @@ struct GridActivity {
   std::vector<Index> ghost_cells;  // 2 per face: the left and right cell
   std::vector<Index> ghost_ends;   // 2 per face: the corners of the shared side
 
+  // Particle Newmark with soft stiffness (seed 004 §3.4): per active cell (in active_cells order) its flag
+  // M_E, the nodes it shares neither with an inactive cell nor with a boundary marked outside; valid for
+  // the active set of `flags_version`.
+  std::vector<int> inside_nodes;
+  std::uint64_t flags_version = 0;
+
   Index n_active_cells() const { return Index(active_cells.size()); }
 };
 

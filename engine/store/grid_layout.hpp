@@ -1,5 +1,6 @@
 // How points are found in an MPM background grid (the locate system): a rectangle of nx x ny squares,
-// square k = j nx + i cut into the cells 2k and 2k + 1, is searched by arithmetic; any other
+// square k = j nx + i cut into the cells 2k and 2k + 1, is searched by arithmetic; a graded rectangle of
+// quad9 cells by a binary search along each axis; any other
 // triangulation by walking from the point's previous cell through the cells' neighbours, starting from a
 // bucket index of the cells when there is no previous cell or the walk fails. Lengths in L.
 #pragma once
@@ -15,6 +16,10 @@ struct GridLayout {
   Vec2 origin = Vec2::Zero();   // structured: lower-left corner
   Vec2 spacing = Vec2::Ones();  // structured: square size
   int nx = 0, ny = 0;           // structured: squares along x and y
+
+  // Graded rectangles of quad9 cells: the cell edges along x (nx + 1 values) and y (ny + 1), ascending;
+  // cell k = j nx + i spans [x_lines[i], x_lines[i+1]] x [y_lines[j], y_lines[j+1]] (binary search).
+  std::vector<double> x_lines, y_lines;
 
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  // bounding box of the grid
   double tolerance = 0.0;  // distance outside a cell still accepted as inside it (round-off on shared edges)

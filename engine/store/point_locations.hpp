@@ -17,7 +17,11 @@ struct PointLocations {
 
   Column<Index> cell;  // grid cell holding the point at its position x_n = X + u_n
   Column<Vec4> N;      // shape functions of the cell's corners at x_n (tri3: barycentric, fourth entry 0)
+  Column<Vec2> xi;     // quad9 grids: the point's coordinates in the reference square [-1, 1]^2 of its cell
   Column<Mat3> F;      // material points: deformation gradient at the current Newton iterate
+  // Particle Newmark with receding contact (seed 004 §5): the side (0-3) of the host cell on a wall that
+  // the particle moves away from this step, or kNoIndex.
+  Column<Index> receding;
 
   // Points grouped by cell (a counting sort, ascending point index within a cell): the points of cell c
   // are by_cell[cell_offsets[c] .. cell_offsets[c + 1]). Scatters to the grid visit cells colour by colour
@@ -37,12 +41,14 @@ struct PointLocations {
   void resize(Index n) {
     cell.resize(n, kNoIndex);
     N.resize(n, Vec4::Zero());
+    xi.resize(n, Vec2::Zero());
     F.resize(n, Mat3::Identity());
+    receding.resize(n, kNoIndex);
   }
 
   template <class Visit>
   void for_each_column(Visit&& f) {
-    f("cell", cell), f("N", N), f("F", F);
+    f("cell", cell), f("N", N), f("xi", xi), f("F", F), f("receding", receding);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

@@ -7,6 +7,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/grid_shape.hpp"
+#include "engine/mesh/quad9_shape.hpp"
 
 namespace loom {
 namespace {
@@ -70,6 +71,21 @@ Index walk(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, c
   return kNoIndex;
 }
 
+// Graded quad9 rectangle: the cell by a binary search along each axis, then xi by the inverse map.
+Index find_quad9(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Vec2& xi) {
+  const double tol = layout.tolerance;
+  if (!(x.x() >= layout.lo.x() - tol && x.y() >= layout.lo.y() - tol && x.x() <= layout.hi.x() + tol && x.y() <= layout.hi.y() + tol))
+    return kNoIndex;
+  auto interval = [](const std::vector<double>& lines, double s) {
+    const auto it = std::upper_bound(lines.begin() + 1, lines.end() - 1, s);
+    return Index(it - lines.begin()) - 1;
+  };
+  const Index c = interval(layout.y_lines, x.y()) * layout.nx + interval(layout.x_lines, x.x());
+  Quad9Coordinates X;
+  for (int a = 0; a < 9; ++a) X.row(a) = nodes.X[grid.node(c, a)].transpose();
+  return quad9_inverse_map(X, x, xi) ? c : kNoIndex;
+}
+
 }  // namespace
 
 Index host_active_cell(const Cells& grid, const Nodes<2>& nodes, const GridActivity& act, Index c, const Vec2& x, Vec4& N) {
@@ -117,10 +133,11 @@ void locate_points(const StepContext& ctx, const GridLayout& layout, const Cells
   std::atomic<Index> outside{0};
   for_each_index(n, [&](Index p) {
     Vec4 N;
-    const Index c = find_cell(layout, grid, grid_nodes, points.position(p), loc.cell[p], N);
+    const Index c = grid.type == CellType::quad9 ? find_quad9(layout, grid, grid_nodes, points.position(p), loc.xi[p])
+                                                 : find_cell(layout, grid, grid_nodes, points.position(p), loc.cell[p], N);
     loc.cell[p] = c;
     if (c == kNoIndex) return void(outside.fetch_add(1, std::memory_order_relaxed));
-    loc.N[p] = N;
+    if (grid.type != CellType::quad9) loc.N[p] = N;
   });
   if (outside.load() > 0) {
     Index first = 0;
