@@ -42,5 +42,6 @@ struct Frame {
 inline constexpr std::uint8_t kVtkTriangle = 5;
 inline constexpr std::uint8_t kVtkQuad = 9;
 inline constexpr std::uint8_t kVtkQuadraticTriangle = 22;
+inline constexpr std::uint8_t kVtkBiquadraticQuad = 28;
 
 }  // namespace loom

@@ -5,10 +5,33 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/mesh/boundary_edges.hpp"
+#include "engine/mesh/particle_generators.hpp"
 #include "engine/mesh/triangle_rules.hpp"
 #include "engine/methods/build_mesh.hpp"
 
 namespace loom {
+namespace {
+
+GeneratedParticles generate_particles(const ParticleGeneratorSpec& spec, double density, std::size_t body) {
+  try {
+    if (spec.kind == ParticleGenerator::disk) {
+      DiskParticleSpec d;
+      d.centre = spec.centre, d.radius = spec.radius, d.core_radius = spec.core_radius, d.n_theta = spec.n_theta, d.factor = spec.factor;
+      d.density = density;
+      return generate_disk_particles(d);
+    }
+    BeamParticleSpec m;
+    m.root = spec.root, m.length = spec.length, m.height = spec.height, m.core_height = spec.core_height, m.n_height = spec.n_height;
+    m.factor = spec.factor, m.density = density;
+    return generate_beam_particles(m);
+  } catch (const InputError& e) {
+    std::ostringstream os;
+    os << spec.where << ": error: body[" << body << "].particles: " << e.what();
+    throw InputError(os.str());
+  }
+}
+
+}  // namespace
 
 void build_material_points(const SceneSpec& scene, Points<2>& particles) {
   std::vector<Vec2> X;
@@ -16,8 +39,16 @@ void build_material_points(const SceneSpec& scene, Points<2>& particles) {
   std::vector<Index> body;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& spec = scene.bodies[b];
-    const MeshData mesh = generate_body_mesh(spec.mesh);
     const double density = scene.materials[std::size_t(spec.material)].density;
+    if (spec.particles.kind != ParticleGenerator::none) {
+      const GeneratedParticles g = generate_particles(spec.particles, density, b);
+      X.insert(X.end(), g.X.begin(), g.X.end());
+      volume.insert(volume.end(), g.volume.begin(), g.volume.end());
+      mass.insert(mass.end(), g.mass.begin(), g.mass.end());
+      body.insert(body.end(), g.X.size(), Index(b));
+      continue;
+    }
+    const MeshData mesh = generate_body_mesh(spec.mesh);
     const auto& rule = triangle_rule(spec.particles_per_cell);
     for (Index t = 0; t < mesh.n_triangles(); ++t) {
       const Vec2 &x0 = mesh.X[std::size_t(mesh.triangles[3 * std::size_t(t)])], &x1 = mesh.X[std::size_t(mesh.triangles[3 * std::size_t(t) + 1])],

@@ -19,6 +19,8 @@
 #include "engine/store/store_report.hpp"
 #include "systems/loads/apply_grid_loads.hpp"
 #include "systems/locate/activate_grid.hpp"
+#include "systems/locate/contact_flags.hpp"
+#include "systems/update/commit_particle_newmark.hpp"
 #include "systems/locate/locate_points.hpp"
 #include "systems/map/interpolate_to_particles.hpp"
 #include "systems/map/project_to_grid.hpp"
@@ -30,10 +32,13 @@ MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
   ctx_.scene = &scene_;
   // A static model must hold the active grid's rigid motions; a point probe must start in the body.
   check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
-  const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
-  check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
+  if (scene_.bodies[0].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
+    const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
+    check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
+  }
   probe_plan_ = plan_particle_probes(scene_);
-  build_graph();
+  if (m_.particle_newmark) build_particle_newmark_graph();
+  else build_graph();
 }
 
 MpmRun::~MpmRun() = default;
@@ -89,8 +94,58 @@ void MpmRun::build_graph() {
   g.build();
 }
 
+// Seed 004 (Aulisa & Capodaglio §3): nothing is projected to the grid; the particles carry the Newmark state.
+void MpmRun::build_particle_newmark_graph() {
+  graph_ = std::make_unique<StepGraph>("mpm (particle Newmark)", ctx_, timers_);
+  StepGraph& g = *graph_;
+  g.name_store(&m_.grid, "grid_cells");
+  g.name_store(&m_.grid_nodes, "grid_nodes");
+  g.name_store(&m_.activity, "grid_activity");
+  g.name_store(&m_.particles, "particles");
+  g.name_store(&m_.particle_loc, "particle_locations");
+  g.name_store(&m_.probe_points, "probe_points");
+  g.name_store(&m_.materials, "materials");
+  g.name_store(&m_.bc, "grid_conditions");
+  g.name_store(&m_.system, "linear_system");
+  g.name_store(&status_, "step_status");
+  g.name_store(&probe_writer_, "probes.csv");
+  g.name_store(&writer_, "vtk_writer");
+  g.name_store(&m_.layout, "grid_layout");
+  g.name_store(&m_.outside_node, "outside_nodes");
+  g.name_store(&m_.wall_sides, "wall_sides");
+  g.name_store(&m_.probe_particle, "probe_particles");
+  g.name_store(&m_.traction_points, "traction_points");
+  g.name_store(&m_.traction_loc, "traction_point_locations");
+
+  g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
+  g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
+  g.add_system("flag_soft_cells", &flag_soft_cells, m_.grid, m_.outside_node, m_.activity);
+  if (m_.particle_loc.receding.used())
+    g.add_system("mark_receding_particles", &mark_receding_particles, m_.grid, m_.grid_nodes, m_.wall_sides, m_.particles, m_.particle_loc);
+  g.add_system("apply_grid_loads", &apply_grid_loads, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
+               m_.traction_loc, m_.bc);
+  g.add_node("newton",
+             {{&m_.grid, &m_.activity, &m_.particles, &m_.materials, &m_.bc}, {&m_.grid_nodes, &m_.particle_loc, &m_.system, &status_}},
+             [this] { newton_node(); }, "assemble -> solve -> update until converged (particles as quadrature points, consistent particle mass)");
+  const auto commit = g.add_system("commit_particle_newmark", &commit_particle_newmark, m_.grid, m_.grid_nodes, m_.particle_loc, m_.particles);
+  g.run_if(commit, &status_, [this] { return status_.converged; });
+  const auto follow = g.add_system("follow_particles", &follow_particles, m_.probe_particle, m_.particles, m_.probe_points);
+  g.run_if(follow, &status_, [this] { return status_.converged; });
+  const auto probes = g.add_node("probes",
+                                 {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
+                                  {&probe_writer_}},
+                                 [this] { probes_node(); });
+  g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
+  const auto output = g.add_node("output", {{&m_.particles, &m_.materials, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.particle_loc}, {&writer_}},
+                                 [this] { output_node(); }, "snapshot here; the VTK files are written while the next step runs");
+  g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
+  g.build();
+}
+
 void MpmRun::newton_node() {
-  update_grid_kinematics(ctx_, m_.grid_nodes);  // Newmark predictor from the reset grid (lines 13-15)
+  if (m_.particle_newmark)  // the grid starts every step undeformed: u is the step's displacement
+    for (Index i = 0; i < m_.grid_nodes.size(); ++i) m_.grid_nodes.u[i].setZero();
+  update_grid_kinematics(ctx_, m_.grid_nodes);  // grid Newmark: the predictor from the reset grid (lines 13-15)
   MpmNewtonProblem problem(ctx_, m_, solver_, timers_);
   NewtonSettings settings = newton_settings_of(scene_.solver);
   if (options_.verbose && options_.log) {
@@ -157,14 +212,20 @@ void MpmRun::describe(std::ostream& os) const {
     const char* names[] = {"none", "ppp", "asgs", "osgs"};
     os << ", stabilisation " << names[int(body.stabilisation)];
   }
-  os << ", " << body.particles_per_cell << " particles per body cell, grid " << (m_.layout.structured ? "structured (arithmetic locate)" : "unstructured (walk)") << "\n";
+  if (m_.particle_newmark) {
+    os << ", scheme particle_newmark (beta " << scene_.time.beta << ", gamma " << scene_.time.gamma << "; soft stiffness c1 " << scene_.mpm.soft_c1
+       << ", c2 " << scene_.mpm.soft_c2 << "; receding contact " << scene_.mpm.receding_contact << ")";
+  }
+  if (body.particles.kind != ParticleGenerator::none) os << ", " << m_.particles.X.size() << " generated particles, grid ";
+  else os << ", " << body.particles_per_cell << " particles per body cell, grid ";
+  os << (m_.layout.structured ? "structured (arithmetic locate)" : "unstructured (walk)") << "\n";
   os << "stores:\n";
   {
     StoreReport r(os, "grid_nodes", m_.grid_nodes.size());
     m_.grid_nodes.for_each_column(r);
   }
   {
-    StoreReport r(os, "grid_cells[tri3]", m_.grid.size());
+    StoreReport r(os, std::string("grid_cells[") + cell_type_name(m_.grid.type) + "]", m_.grid.size());
     m_.grid.for_each_column(r);
   }
   os << "    colours: " << m_.grid.n_colours() << "; active at t = 0: " << m_.activity.n_active_cells() << " cells\n";
@@ -212,9 +273,18 @@ void MpmRun::initial_acceleration() {
 
 void MpmRun::write_initial_state() {
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
-  project_to_grid(ctx_, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
+  if (!m_.particle_newmark) project_to_grid(ctx_, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
   apply_grid_loads(ctx_, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points, m_.traction_loc, m_.bc);
-  if (m_.dynamic && scene_.time.initial_acceleration == InitialAcceleration::equilibrium) initial_acceleration();
+  if (m_.dynamic && scene_.time.initial_acceleration == InitialAcceleration::equilibrium) {
+    if (m_.particle_newmark) {
+      // The particles start with F = I, stress free: f_int = 0, and a body that touches no wall has the
+      // equilibrium acceleration of its body force, particle by particle (free fall: exactly g).
+      for (Index p = 0; p < m_.particles.X.size(); ++p)
+        m_.particles.a[p] = m_.bc.particle_body_force.empty() ? Vec2::Zero() : m_.bc.particle_body_force[std::size_t(p)];
+    } else {
+      initial_acceleration();
+    }
+  }
   status_ = StepStatus{};
   status_.converged = true;
   probes_node();

@@ -45,6 +45,7 @@ class MpmRun final : public MethodRun {
 
  private:
   void build_graph();
+  void build_particle_newmark_graph();
   void write_initial_state();
   // engine/methods/mpm_checkpoint.cpp
   void write_checkpoint(int step);

@@ -10,7 +10,9 @@
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_particles.hpp"
 #include "engine/methods/memory_estimate.hpp"
+#include "engine/mesh/quad9_grid.hpp"
 #include "systems/locate/activate_grid.hpp"
+#include "systems/locate/contact_flags.hpp"
 #include "systems/locate/locate_points.hpp"
 
 namespace loom {
@@ -85,17 +87,37 @@ RectangleSpec rectangle_of(const MeshSpec& m) {
 
 }  // namespace
 
+// Soft-stiffness outside nodes, wall sides, and the particles that point probes follow (the nearest to `at`).
+void MpmModel::build_particle_newmark_data() {
+  outside_node.assign(std::size_t(grid_nodes.size()), 0);
+  for (std::size_t k = 0; k < scene.boundaries.size(); ++k)
+    if (scene.boundaries[k].outside)
+      for (Index i : bc.boundary_nodes[k]) outside_node[std::size_t(i)] = 1;
+  wall_sides = find_wall_sides(grid, bc, grid_nodes.size());
+  probe_particle.clear();
+  for (const auto& p : scene.probes) {
+    if (p.kind != ProbeKind::point) continue;
+    Index nearest = 0;
+    for (Index q = 1; q < particles.X.size(); ++q)
+      if ((particles.X[q] - p.at).squaredNorm() < (particles.X[nearest] - p.at).squaredNorm()) nearest = q;
+    probe_particle.push_back(nearest);
+  }
+  probe_points.resize(Index(probe_particle.size()));
+  for (std::size_t k = 0; k < probe_particle.size(); ++k) probe_points.X[Index(k)] = particles.X[probe_particle[k]];
+}
+
 MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   check_memory(scene);
   const BodySpec& body = scene.bodies.at(0);
   dynamic = scene.time.integrator == Integrator::newmark;
   mixed = body.element == Formulation::p1p1_up;
   osgs = mixed && body.stabilisation == Stabilisation::osgs;
+  particle_newmark = scene.mpm.scheme == MpmScheme::particle_newmark;
 
   // 1. Columns the scene needs.
   grid_nodes.u_n.use(false);  // the grid starts every step undeformed: u is the step's displacement
-  grid_nodes.lumped_mass.use();
-  for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic);
+  grid_nodes.lumped_mass.use(!particle_newmark);  // particle Newmark: the grid carries no mass, velocity or acceleration
+  for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic && !particle_newmark);
   grid_nodes.p.use(mixed);
   grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs), grid_nodes.lumped_volume.use(osgs);
   for (auto* c : {&particles.X, &particles.u}) c->use();
@@ -104,6 +126,9 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   particles.pressure.use(mixed);
   particles.proj_u.use(osgs), particles.proj_p.use(osgs);
   particle_loc.F.use();
+  particle_loc.xi.use(scene.grid.quad9);
+  particle_loc.N.use(!scene.grid.quad9);
+  particle_loc.receding.use(particle_newmark && scene.mpm.receding_contact > 0.0);
   traction_points.X.use(), traction_points.u.use(), traction_points.volume.use(), traction_points.body.use();
   traction_loc.entity = "traction point";
   probe_points.X.use(), probe_points.u.use();
@@ -114,7 +139,9 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   const RectangleSpec rect = rectangle_of(gm);
   const bool structured = gm.generator == MeshGenerator::rectangle && gm.distortion == 0.0;
   try {
-    if (scene.grid.quad4) build_quad_grid(rect, body.element, grid_nodes, grid, layout);
+    if (scene.grid.quad9) build_quad9_grid(GradedRectangle{rect.origin, rect.size, rect.nx, rect.ny, scene.grid.grading, scene.grid.refinements},
+                                           body.element, grid_nodes, grid, layout);
+    else if (scene.grid.quad4) build_quad_grid(rect, body.element, grid_nodes, grid, layout);
     else build_background_grid(generate_body_mesh(gm), structured ? &rect : nullptr, body.element, grid_nodes, grid, layout);
   } catch (const InputError& e) {
     std::ostringstream os;
@@ -134,7 +161,11 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   bc.increments = true;
   bc.target = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
   bc.external = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
-  linear_solver = mixed ? LinearSolverKind::umfpack : scene.solver.linear;
+  const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
+  linear_solver = mixed || unsymmetric ? LinearSolverKind::umfpack : scene.solver.linear;
+  LOOM_CHECK(!(unsymmetric && scene.solver.linear == LinearSolverKind::cholmod), InputError,
+             scene.file << ": error: solver.linear: cholmod needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
+                        << "makes it unsymmetric; use umfpack or auto");
   LOOM_CHECK(!(mixed && scene.solver.linear == LinearSolverKind::cholmod), InputError,
              scene.file << ": error: solver.linear: cholmod needs a symmetric positive definite tangent, and the mixed u-p system "
                         << "(p1p1_up) is indefinite and, stabilised, unsymmetric; use umfpack or auto");
@@ -147,8 +178,17 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
     locate_points(ctx, layout, grid, grid_nodes, traction_points, traction_loc);
   } catch (const RunError& e) {
     std::ostringstream os;
-    os << gm.where << ": error: grid: the body does not fit in the background grid at t = 0: " << e.what();
+    if (body.particles.kind != ParticleGenerator::none)
+      os << body.particles.where << ": error: body[0].particles: the generated " << (body.particles.kind == ParticleGenerator::disk ? "disk" : "beam")
+         << " does not fit in the background grid: " << e.what();
+    else os << gm.where << ": error: grid: the body does not fit in the background grid at t = 0: " << e.what();
     throw InputError(os.str());
+  }
+  if (particle_newmark) {
+    build_particle_newmark_data();
+    activate_grid(ctx, grid, particle_loc, bc, activity, system);
+    flag_soft_cells(ctx, grid, outside_node, activity);
+    return;
   }
   for (std::size_t k = 0, tracer = 0; k < scene.probes.size(); ++k) {  // a probe outside the grid: its own key
     if (scene.probes[k].kind != ProbeKind::point) continue;

@@ -43,10 +43,20 @@ struct MpmModel {
   std::vector<BodyMaterial> materials;
   BoundaryConditions<2> bc;  // on the grid's dofs
   LinearSystem system;
+  // Particle Newmark (seed 004): the boundary nodes that lower the soft-stiffness flags, each cell's wall
+  // sides (receding contact), and the particle each point probe follows.
+  std::vector<char> outside_node;
+  std::vector<unsigned char> wall_sides;
+  std::vector<Index> probe_particle;
+
   bool dynamic = false;  // newmark
+  bool particle_newmark = false;  // mpm.scheme
   bool mixed = false;    // p1p1_up: three dofs per grid node
   bool osgs = false;
   LinearSolverKind linear_solver = LinearSolverKind::automatic;
+
+ private:
+  void build_particle_newmark_data();
 };
 
 }  // namespace loom

@@ -13,6 +13,7 @@
 #include "engine/methods/anderson_mixing.hpp"
 #include "engine/methods/mpm_model.hpp"
 #include "systems/assemble/assemble_grid_system.hpp"
+#include "systems/assemble/assemble_particle_newmark.hpp"
 #include "systems/map/project_residuals.hpp"
 #include "systems/solve/solve_grid_step.hpp"
 #include "systems/update/update_grid.hpp"
@@ -30,6 +31,10 @@ class MpmNewtonProblem final : public NonlinearProblem {
       project_residuals(ctx_, m_.materials, m_.grid, m_.activity, m_.particles, m_.particle_loc, m_.bc, m_.grid_nodes);
     }
     assembled_ = true;
+    if (m_.particle_newmark)
+      return assemble_particle_newmark(ctx_, with_tangent, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc,
+                                       m_.particle_loc, m_.system)
+                 .inverted_cells == 0;
     const GridAssemblyOptions options{with_tangent, inertia_};
     return assemble_grid_system(ctx_, options, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc, m_.particle_loc,
                                 m_.system)

@@ -25,11 +25,20 @@ void read_mesh_file(const TableReader& mesh, MeshSpec& m) {
 void read_grid(const TableReader& grid, GridSpec& g) {
   read_mesh(grid, g.mesh);
   g.quad4 = grid.string("cells") == "quad4";
+  g.quad9 = grid.string("cells") == "quad9";
   g.ghost_penalty = grid.has("ghost_penalty") ? grid.real("ghost_penalty") : g.quad4 ? 0.1 : 0.0;
-  if (!g.quad4) return;
-  if (g.mesh.generator != MeshGenerator::rectangle) grid.error("cells", "quad4 cells need generator = \"rectangle\"");
-  if (g.mesh.pattern != GridPattern::right) grid.error("pattern", "cells = \"quad4\" are squares, not triangulated: leave pattern out");
-  if (g.mesh.distortion != 0.0) grid.error("distortion", "cells = \"quad4\" are axis-aligned squares: distortion must be 0");
+  g.grading = grid.vec2("grading");
+  g.refinements = int(grid.integer("refinements"));
+  for (const char* k : {"grading", "refinements"})
+    if (grid.has(k) && !g.quad9) grid.error(k, std::string(k) + " shapes quad9 grids (cells = \"quad9\")");
+  if (g.quad9 && !(g.grading.minCoeff() > 0.0)) grid.error("grading", "the grading ratios must be > 0");
+  if (g.quad9 && g.mesh.nx * double(g.mesh.ny) * double(1 << (2 * g.refinements)) > 5e7)
+    grid.error("refinements", "more than 5e7 cells requested");
+  if (!g.quad4 && !g.quad9) return;
+  const char* cells = g.quad4 ? "cells = \"quad4\"" : "cells = \"quad9\"";
+  if (g.mesh.generator != MeshGenerator::rectangle) grid.error("cells", std::string(cells) + " needs generator = \"rectangle\"");
+  if (g.mesh.pattern != GridPattern::right) grid.error("pattern", std::string(cells) + " are quadrilaterals, not triangulated: leave pattern out");
+  if (g.mesh.distortion != 0.0) grid.error("distortion", std::string(cells) + " are axis-aligned rectangles: distortion must be 0");
 }
 
 void read_mesh(const TableReader& mesh, MeshSpec& m) {

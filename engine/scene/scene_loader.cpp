@@ -14,6 +14,7 @@
 #include "engine/scene/expression.hpp"
 #include "engine/scene/mesh_options.hpp"
 #include "engine/scene/method_checks.hpp"
+#include "engine/scene/mpm_options.hpp"
 #include "engine/scene/overrides.hpp"
 #include "engine/scene/pfem_options.hpp"
 #include "engine/scene/smoothed_options.hpp"
@@ -71,6 +72,7 @@ class Loader {
     read_output(s);
     check_mass(s);
     check_method_support(s, root_, diag_);
+    read_mpm_options(s, root_);
     return s;
   }
 
@@ -102,6 +104,7 @@ class Loader {
     s.time.dt = t.real("dt");
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
+    read_newmark_parameters(t, s.time);
   }
 
   void read_solver(SceneSpec& s) {
@@ -188,7 +191,8 @@ class Loader {
       if (!err.empty()) t.error("alpha_s", "invalid formula \"" + text + "\" (it may use K, G, E, nu): " + err);
       else if (!(b.alpha_s >= 0.0)) t.error("alpha_s", "must be >= 0, got " + std::to_string(b.alpha_s));
     }
-    read_mesh(t.table("mesh"), b.mesh);
+    read_particle_generator(t, b);
+    if (b.particles.kind == ParticleGenerator::none) read_mesh(t.table("mesh"), b.mesh);
     b.body_force = read_vector(t.table("body_force"), diag_);
     warn_if_locking(s, t, b);
     s.bodies.push_back(b);
@@ -260,6 +264,7 @@ class Loader {
     const auto traction = t.table("traction");
     b.has_traction = traction.present();
     b.traction = read_vector(traction, diag_);
+    b.outside = t.boolean("outside");
     if (t.table("displacement").present() && !b.displacement.x && !b.displacement.y)
       t.error("displacement", "give at least one component (x or y)");
     s.boundaries.push_back(b);

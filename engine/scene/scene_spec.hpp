@@ -54,6 +54,7 @@ struct TimeSpec {
   MassKind mass = MassKind::lumped;
   InitialAcceleration initial_acceleration = InitialAcceleration::zero;  // newmark, bossak
   double alpha = -0.3;  // bossak: alpha_B in [-1/3, 0]
+  double beta = 0.25, gamma = 0.5;  // newmark (fem; mpm with scheme particle_newmark)
 };
 
 struct SolverSpec {
@@ -100,6 +101,21 @@ struct VectorExpression {
   std::optional<ExpressionSpec> x, y;  // a component left out is absent (free / zero)
 };
 
+// Particles of seed 004's appendix, generated without a body mesh: a disk (uniform core + boundary layers)
+// or a cantilever beam on a wall at x = root.x with centre line y = root.y.
+enum class ParticleGenerator { none, disk, beam };
+struct ParticleGeneratorSpec {
+  ParticleGenerator kind = ParticleGenerator::none;
+  Vec2 centre = Vec2::Zero();  // disk
+  double radius = 0, core_radius = 0;
+  int n_theta = 0;
+  Vec2 root = Vec2::Zero();  // beam
+  double length = 0, height = 0, core_height = 0;
+  int n_height = 0;
+  double factor = 1.0;  // boundary-layer refinement
+  SourceRef where;
+};
+
 struct BodySpec {
   std::string name;
   Index material = 0;  // index into SceneSpec::materials
@@ -113,6 +129,7 @@ struct BodySpec {
   int particles_per_cell = 3;  // material points per body cell (triangle_rules)
   Stabilisation stabilisation = Stabilisation::asgs;  // p1p1_up
   double tau_c1 = 1.0, tau_c2 = 1.0;  // eq 21: tau1 = c1 h^2 / (2 mu), tau2 = 2 c2 mu
+  ParticleGeneratorSpec particles;  // instead of particles_per_cell in a body mesh (seed 004 Appendix A)
   SourceRef where;
 };
 
@@ -120,6 +137,9 @@ struct BodySpec {
 struct GridSpec {
   bool present = false;
   bool quad4 = false;  // cells = "quad4": bilinear cells of a rectangle
+  bool quad9 = false;  // cells = "quad9": biquadratic cells of a graded rectangle (seed 004)
+  Vec2 grading = Vec2::Ones();  // quad9: ratio of successive coarse cell sizes
+  int refinements = 0;          // quad9: midpoint refinements J
   double ghost_penalty = 0.0;  // gamma_0 of the face ghost penalty (0: off)
   MeshSpec mesh;
 };
@@ -134,6 +154,18 @@ struct BoundarySpec {
   VectorExpression traction;
   bool has_traction = false;
   std::optional<ExpressionSpec> pressure;  // mpm, p1p1_up: prescribed grid pressure
+  bool outside = false;  // mpm particle_newmark: the region's grid nodes lower the soft-stiffness flags
+};
+
+// Method mpm: the time scheme and seed 004's edge terms.
+//  grid_newmark:     seed 003 (Moreno et al.): particles projected to the grid, lumped grid mass, Newmark on the grid;
+//  particle_newmark: seed 004 (Aulisa & Capodaglio): particles are the quadrature points and carry the Newmark
+//                    state, consistent particle mass, soft stiffness and receding contact.
+enum class MpmScheme { grid_newmark, particle_newmark };
+struct MpmSpec {
+  MpmScheme scheme = MpmScheme::grid_newmark;
+  double soft_c1 = 0.0, soft_c2 = 0.0;  // C_E for flags M_E < 5 and 5 <= M_E < 9
+  double receding_contact = 0.0;       // C_c in [0, 1]
 };
 
 struct ProbeSpec {
@@ -177,6 +209,7 @@ struct SceneSpec {
   std::vector<MaterialSpec> materials;
   std::vector<BodySpec> bodies;
   GridSpec grid;
+  MpmSpec mpm;
   std::vector<BoundarySpec> boundaries;
   VectorExpression body_force;  // global, per unit mass
   std::vector<ProbeSpec> probes;

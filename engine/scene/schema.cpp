@@ -36,13 +36,19 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("time", K::table, "Time stepping.").require());
   s.push_back(key("time.integrator", K::choice,
                   "static: no inertia; euler_backward: implicit Euler ([Schewe 2024] eq 12; methods fem and pfem); newmark: Newmark "
-                  "with beta = 1/4, gamma = 1/2 (method mpm: on the grid with lumped mass, [Moreno et al.] §3.3); bossak: alpha-Bossak "
+                  "with time.beta, time.gamma (method mpm: on the grid with lumped mass and beta = 1/4, gamma = 1/2, [Moreno et al.] §3.3, "
+                  "or at the particles, mpm.scheme); bossak: alpha-Bossak "
                   "(Wood, Bossak & Zienkiewicz 1980; [Reinold 2021] §3.6) with beta = (1 - alpha)^2 / 4, gamma = 1/2 - alpha (methods fem "
                   "and pfem).")
                   .one_of({"static", "euler_backward", "newmark", "bossak"}).by_default("static"));
   s.push_back(key("time.alpha", K::real,
                   "bossak: alpha_B in [-1/3, 0]; 0 is Newmark's average acceleration (no numerical damping), more negative damps the "
                   "highest frequencies more.").by_default("-0.3").at_least(-1.0 / 3.0).at_most(0));
+  s.push_back(key("time.beta", K::real,
+                  "newmark (method fem; method mpm with mpm.scheme = \"particle_newmark\"): beta of Newmark's method; unconditionally "
+                  "stable for 2 beta >= gamma >= 1/2. 1/4 with gamma = 1/2 is the average acceleration rule; [Aulisa 2019] uses 0.3.")
+                  .by_default("0.25").above(0).at_most(0.5));
+  s.push_back(key("time.gamma", K::real, "newmark: gamma of Newmark's method (see time.beta); gamma > 1/2 damps.").by_default("0.5").at_least(0.5).at_most(1));
   s.push_back(key("time.dt", K::real, "Time step (pseudo-time for static runs; boundary expressions see t = step * dt).").require().above(0));
   s.push_back(key("time.steps", K::integer, "Number of steps.").require().at_least(1));
   s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent (mpm: lumped only).")
@@ -122,7 +128,24 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].tau_c1", K::real, "p1p1_up, asgs/osgs: c1 of tau1 = c1 h^2 / (2 mu), h = sqrt(grid cell area) ([Moreno et al.] eq 21).").by_default("1.0").above(0));
   s.push_back(key("body[].tau_c2", K::real, "p1p1_up, asgs/osgs: c2 of tau2 = 2 c2 mu ([Moreno et al.] eq 21).").by_default("1.0").above(0));
   s.push_back(key("body[].mesh", K::table,
-                  "The body's mesh: a generator and its parameters, or a mesh file (method mpm: the mesh the particles are generated in).").require());
+                  "The body's mesh: a generator and its parameters, or a mesh file (method mpm: the mesh the particles are generated in).")
+                  .require_unless("particles"));
+  s.push_back(key("body[].particles", K::table,
+                  "Method mpm, instead of a mesh: the particle sets of [Aulisa 2019] Appendix A, a uniform core with boundary layers "
+                  "refined towards the surface, each particle with its own mass."));
+  s.push_back(key("body[].particles.generator", K::choice,
+                  "disk (centre, radius, core_radius, n_theta, factor) or beam (root, length, height, core_height, n_height, factor).")
+                  .one_of({"disk", "beam"}).require());
+  s.push_back(key("body[].particles.centre", K::vec2, "disk: centre.").by_default("[0.0, 0.0]"));
+  s.push_back(key("body[].particles.radius", K::real, "disk: outer radius R (the last layer ends within a fraction of a layer of it).").above(0));
+  s.push_back(key("body[].particles.core_radius", K::real, "disk: radius R_0 < R of the uniform core.").above(0));
+  s.push_back(key("body[].particles.n_theta", K::integer, "disk: particles on the core's outer ring, N_theta0 (rings: floor(N_theta0 / 2 pi)).").at_least(7));
+  s.push_back(key("body[].particles.root", K::vec2, "beam: the clamped end's centre (x on the wall, y the centre line).").by_default("[0.0, 0.0]"));
+  s.push_back(key("body[].particles.length", K::real, "beam: length L.").above(0));
+  s.push_back(key("body[].particles.height", K::real, "beam: height H.").above(0));
+  s.push_back(key("body[].particles.core_height", K::real, "beam: height H_0 < H of the uniform core.").above(0));
+  s.push_back(key("body[].particles.n_height", K::integer, "beam: particles across the core, N_H.").at_least(2));
+  s.push_back(key("body[].particles.factor", K::real, "Each boundary layer is thinner than the one inside it by this factor (> 1).").above(1));
   s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)); give a generator or a file.")
                   .one_of({"rectangle", "cooks_membrane"}).require_unless("file"));
   s.push_back(key("body[].mesh.file", K::string,
@@ -146,9 +169,15 @@ std::vector<KeySpec> build_schema() {
                   "Method mpm: the background grid ([Moreno et al.] §3), fixed triangles or squares that need not conform to the body and "
                   "must contain the particles at all times; only cells holding particles are active."));
   s.push_back(key("grid.cells", K::choice,
-                  "Cell type: tri3 (linear triangles, the P1 grids of [Moreno et al.]) or quad4 (bilinear squares of a rectangle; generator = "
-                  "\"rectangle\" without pattern or distortion).")
-                  .one_of({"tri3", "quad4"}).by_default("tri3"));
+                  "Cell type: tri3 (linear triangles, the P1 grids of [Moreno et al.]), quad4 (bilinear squares of a rectangle; generator = "
+                  "\"rectangle\" without pattern or distortion) or quad9 (biquadratic cells of a rectangle, graded and refined, [Aulisa 2019]; "
+                  "mpm.scheme = \"particle_newmark\").")
+                  .one_of({"tri3", "quad4", "quad9"}).by_default("tri3"));
+  s.push_back(key("grid.grading", K::vec2,
+                  "quad9: ratio of the size of each coarse cell to the one before it along x and y (left to right, bottom to top).")
+                  .by_default("[1.0, 1.0]"));
+  s.push_back(key("grid.refinements", K::integer,
+                  "quad9: midpoint refinements J of the coarse cells (each cell into four; [Aulisa 2019] §6).").by_default("0").at_least(0).at_most(8));
   s.push_back(key("grid.ghost_penalty", K::real,
                   "gamma_0 of the face ghost penalty on the sides of cut cells (jumps of the normal gradient of u, weight "
                   "gamma_0 mu h, and of p, gamma_0 h^3 / (2 mu)); it steadies nodes of nearly empty cells, which quad4 grids "
@@ -164,6 +193,24 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("grid.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));
   s.push_back(key("grid.distortion", K::real, "Random move of interior grid nodes (fraction of the smallest altitude).").by_default("0.0").at_least(0).at_most(0.25));
   s.push_back(key("grid.seed", K::integer, "Seed of the distortion.").by_default("1").at_least(0));
+  // [mpm]
+  s.push_back(key("mpm", K::table, "Method mpm: the time scheme and the edge terms of [Aulisa 2019]."));
+  s.push_back(key("mpm.scheme", K::choice,
+                  "grid_newmark: [Moreno et al.] §3.3, the particles' mass, velocity and acceleration projected to the grid, lumped grid mass, "
+                  "Newmark with beta = 1/4, gamma = 1/2 on the grid; particle_newmark: [Aulisa 2019] §3, nothing projected, the particles "
+                  "are the quadrature points and carry the Newmark state (consistent particle mass; time.beta, time.gamma), with soft "
+                  "stiffness and receding contact; displacement element p1 only.")
+                  .one_of({"grid_newmark", "particle_newmark"}).by_default("grid_newmark"));
+  s.push_back(key("mpm.soft_stiffness", K::table,
+                  "particle_newmark: [Aulisa 2019] eq 26, mu C_E int (grad u + grad u^T) : grad v on active cells whose flag M_E (nodes not "
+                  "shared with an empty cell or a boundary marked outside) is below the cell's node count: C_E = c1 for M_E < 5, c2 otherwise."));
+  s.push_back(key("mpm.soft_stiffness.c1", K::real, "C_E of cells with M_E < 5 (the paper: 1e-2 ... 1e-5, smaller for stiffer bodies).").by_default("0").at_least(0));
+  s.push_back(key("mpm.soft_stiffness.c2", K::real, "C_E of cells with 5 <= M_E < 9 (the paper: 1e-6 ... 1e-10).").by_default("0").at_least(0));
+  s.push_back(key("mpm.receding_contact", K::real,
+                  "particle_newmark, quad9: C_c of [Aulisa 2019] §5: particles of a cell on a fixed wall (all three side nodes held in x and y) "
+                  "that moved away from it in the last step build F from wall displacements extrapolated from the cell's interior rows, "
+                  "so that the sticky grid contact lets go; 0: off, 1: full extrapolation.")
+                  .by_default("0").at_least(0).at_most(1));
   // [[boundary]]
   s.push_back(key("boundary", K::table_array, "Named regions with optional conditions on them."));
   s.push_back(key("boundary[].name", K::string, "Name probes refer to.").require());
@@ -184,6 +231,9 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges ([Schewe 2024] eq 8)."));
   s.push_back(key("boundary[].traction.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("boundary[].traction.y", K::expression, "y component." + expr).by_default("0"));
+  s.push_back(key("boundary[].outside", K::boolean,
+                  "Method mpm, mpm.soft_stiffness: the region's grid nodes count as outside the body in the flags M_E (the authors' code "
+                  "marks every outer boundary of the disk grids this way, not the beam's clamped wall).").by_default("false"));
   s.push_back(key("boundary[].pressure", K::expression, "Method mpm, p1p1_up: prescribed grid pressure p (sigma = sigma_dev + p I) at the region's grid nodes, "
                   "e.g. to fix the pressure level of an enclosed incompressible body." + expr));
   // [body_force]

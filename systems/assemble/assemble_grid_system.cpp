@@ -5,42 +5,13 @@
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/grid_shape.hpp"
 #include "systems/assemble/elements/displacement_point.hpp"
+#include "systems/assemble/grid_scatter.hpp"
 #include "systems/assemble/elements/ghost_face.hpp"
 #include "systems/assemble/elements/mixed_up_point.hpp"
 #include "systems/update/grid_newmark.hpp"
 
 namespace loom {
 namespace {
-
-double dof_value(const Nodes<2>& g, Index dof, int pn) {
-  const Index node = dof / pn;
-  const int comp = dof % pn;
-  return comp < 2 ? g.u[node][comp] : g.p[node];
-}
-
-// Scatters a cell's local residual (with the Dirichlet lift) and tangent; local dofs are the scatter's.
-template <int NE>
-void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, bool tangent,
-                  Eigen::Matrix<double, NE, 1>& r, const Eigen::Matrix<double, NE, NE>& K, LinearSystem& system) {
-  const int pn = system.dofs.per_node;
-  Eigen::Matrix<double, NE, 1> gap = Eigen::Matrix<double, NE, 1>::Zero();
-  bool lagging = false;
-  for (int k = 0; k < NE; ++k) {
-    const Index dof = sc.cell_dof(entry, k);
-    if (system.dofs.kind[std::size_t(dof)] != DofKind::prescribed) continue;
-    gap[k] = bc.target[dof] - dof_value(g, dof, pn);
-    lagging = lagging || gap[k] != 0.0;
-  }
-  if (lagging) r += K * gap;
-  for (int a = 0; a < NE; ++a) system.residual_full[sc.cell_dof(entry, a)] += r[a];
-  if (!tangent) return;
-  double* values = system.pattern.matrix.valuePtr();
-  for (int a = 0; a < NE; ++a)
-    for (int b = 0; b < NE; ++b) {
-      const Index s = sc.matrix_slot(entry, a, b);
-      if (s != kNoIndex) values[s] += K(a, b);
-    }
-}
 
 struct Args {
   const StepContext& ctx;
@@ -56,12 +27,6 @@ struct Args {
   std::atomic<Index>& inverted;
   bool dynamic;
 };
-
-template <class Body>
-void for_each_active_cell_by_colour(const GridActivity& act, Body&& body) {
-  for (std::size_t k = 0; k + 1 < act.colour_offsets.size(); ++k)
-    for_each_in(act.active_by_colour.data() + act.colour_offsets[k], act.colour_offsets[k + 1] - act.colour_offsets[k], body);
-}
 
 Vec2 body_force_of(const BoundaryConditions<2>& bc, Index p) {
   return bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];

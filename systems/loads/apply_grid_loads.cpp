@@ -32,6 +32,8 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
       if (e[std::size_t(d)] != kNoIndex) b[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, particles.X[p].x(), particles.X[p].y());
     bc.particle_body_force[std::size_t(p)] = b;
   }
+  // Particle Newmark (seed 004) applies the body force at the particles in its kernel, and takes no tractions.
+  if (ctx.scene && ctx.scene->mpm.scheme == MpmScheme::particle_newmark) return;
   for_each_occupied_cell_by_colour(grid, particle_loc, [&](Index c) {
     const Index* pts = particle_loc.points_in(c);
     for (Index k = 0; k < particle_loc.count_in(c); ++k) {

@@ -77,14 +77,14 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
       if (g.v.used()) velocity.values[3 * i + std::size_t(d)] = g.v[node][d];
     }
     if (g.p.used()) pressure.values[i] = -g.p[node], mean_stress.values[i] = g.p[node];
-    mass.values[i] = g.lumped_mass[node];
+    if (g.lumped_mass.used()) mass.values[i] = g.lumped_mass[node];
   }
   frame.connectivity.clear(), frame.offsets.clear(), frame.cell_types.clear();
   FrameArray count{"particles", 1, {}};
   for (Index c : activity.active_cells) {
     for (int a = 0; a < grid.stride; ++a) frame.connectivity.push_back(grid.node(c, a));
     frame.offsets.push_back(Index(frame.connectivity.size()));
-    frame.cell_types.push_back(grid.stride == 4 ? kVtkQuad : kVtkTriangle);
+    frame.cell_types.push_back(grid.stride == 9 ? kVtkBiquadraticQuad : grid.stride == 4 ? kVtkQuad : kVtkTriangle);
     count.values.push_back(particle_loc.count_in(c));
   }
   frame.point_arrays.clear();
@@ -92,7 +92,7 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   if (!velocity.values.empty()) frame.point_arrays.push_back(std::move(velocity));
   if (!pressure.values.empty()) frame.point_arrays.push_back(std::move(pressure));
   if (!mean_stress.values.empty()) frame.point_arrays.push_back(std::move(mean_stress));
-  frame.point_arrays.push_back(std::move(mass));
+  if (g.lumped_mass.used()) frame.point_arrays.push_back(std::move(mass));  // particle Newmark: the grid carries no mass
   frame.cell_arrays = {std::move(count)};
   frame.notes.clear();
   if (g.p.used()) frame.notes = {{"pressure_definition", kPressureDefinition}, {"mean_stress_definition", kMeanStressDefinition}};

@@ -58,6 +58,7 @@ inline TimeIntegrator time_integrator_of(const TimeSpec& time, double dt) {
   if (t.kind == Integrator::bossak) t.alpha = time.alpha;
   t.beta = 0.25 * (1.0 - t.alpha) * (1.0 - t.alpha);
   t.gamma = 0.5 - t.alpha;
+  if (t.kind == Integrator::newmark) t.beta = time.beta, t.gamma = time.gamma;  // default 1/4, 1/2: the same
   return t;
 }
 

@@ -29,12 +29,15 @@ Mat3 deformation_gradient(const NodalVectors<NEN>& du, const NodalVectors<NEN>& 
   return dF * F_n;
 }
 
-// Adds the point's internal force (and tangent if K != nullptr) to r and K; returns false if the
-// material state does not exist (J <= 0). F receives the deformation gradient.
+// The point's internal force with trial gradients dN_trial that may differ from the test gradients dN: F is built from dN_trial
+// (seed 004's receding contact replaces the displacements of a cell's wall nodes by a linear map of the
+// others, u* = T u, so that dF depends on u through dN_trial = T^T dN), the virtual work from dN; the
+// tangent G^A A G*^B is then unsymmetric.
 template <int NEN, class MaterialT>
 bool add_displacement_point(const MaterialT& material, const NodalVectors<NEN>& du, const NodalVectors<NEN>& dN,
-                            double dV_n, const Mat3& F_n, Mat3& F, ElementVector<NEN>& r, ElementMatrix<NEN>* K) {
-  F = deformation_gradient<NEN>(du, dN, F_n);
+                            const NodalVectors<NEN>& dN_trial, double dV_n, const Mat3& F_n, Mat3& F, ElementVector<NEN>& r,
+                            ElementMatrix<NEN>* K) {
+  F = deformation_gradient<NEN>(du, dN_trial, F_n);
   const double dV0 = dV_n / F_n.determinant();
   const NodalVectors<NEN> G = dN * F_n.template topLeftCorner<2, 2>();
   Mat3 P;
@@ -43,12 +46,13 @@ bool add_displacement_point(const MaterialT& material, const NodalVectors<NEN>& 
   } else {
     Mat9 A;
     if (!material.stress_tangent(F, P, A)) return false;
+    const NodalVectors<NEN> G_trial = dN_trial * F_n.template topLeftCorner<2, 2>();
     for (int i = 0; i < 2; ++i)
       for (int k = 0; k < 2; ++k) {
         Eigen::Matrix2d C;  // C_jl = A_ijkl for fixed i, k
         C << A(ij(i, 0), ij(k, 0)), A(ij(i, 0), ij(k, 1)), A(ij(i, 1), ij(k, 0)), A(ij(i, 1), ij(k, 1));
         const NodalVectors<NEN> GC = G * C;
-        const Eigen::Matrix<double, NEN, NEN> block = dV0 * GC * G.transpose();
+        const Eigen::Matrix<double, NEN, NEN> block = dV0 * GC * G_trial.transpose();
         for (int a = 0; a < NEN; ++a)
           for (int b = 0; b < NEN; ++b) (*K)(2 * a + i, 2 * b + k) += block(a, b);
       }
@@ -56,6 +60,14 @@ bool add_displacement_point(const MaterialT& material, const NodalVectors<NEN>& 
   const NodalVectors<NEN> f = dV0 * G * P.template topLeftCorner<2, 2>().transpose();  // f(A, i) = P_ij G^A_j
   for (int a = 0; a < NEN; ++a) r.template segment<2>(2 * a) += f.row(a).transpose();
   return true;
+}
+
+// Adds the point's internal force (and tangent if K != nullptr) to r and K; returns false if the
+// material state does not exist (J <= 0). F receives the deformation gradient. Test and trial gradients equal.
+template <int NEN, class MaterialT>
+bool add_displacement_point(const MaterialT& material, const NodalVectors<NEN>& du, const NodalVectors<NEN>& dN,
+                            double dV_n, const Mat3& F_n, Mat3& F, ElementVector<NEN>& r, ElementMatrix<NEN>* K) {
+  return add_displacement_point<NEN>(material, du, dN, dN, dV_n, F_n, F, r, K);
 }
 
 }  // namespace loom

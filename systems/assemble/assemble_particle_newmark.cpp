@@ -1,0 +1,96 @@
+#include "systems/assemble/assemble_particle_newmark.hpp"
+
+#include <atomic>
+
+#include "engine/mesh/grid_point_shape.hpp"
+#include "systems/assemble/elements/particle_newmark_point.hpp"
+#include "systems/assemble/elements/receding_contact.hpp"
+#include "systems/assemble/elements/soft_stiffness.hpp"
+#include "systems/assemble/grid_scatter.hpp"
+
+namespace loom {
+
+template <int NEN>
+Eigen::Matrix<double, NEN, 2> particle_trial_gradients(const Eigen::Matrix<double, NEN, 2>& dN, Index receding_side, double c_c) {
+  if constexpr (NEN == 9) {
+    if (receding_side != kNoIndex && c_c > 0.0) return receding_trial_gradients(dN, int(receding_side), c_c);
+  }
+  return dN;
+}
+
+namespace {
+
+template <int NEN>
+void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<BodyMaterial>& materials, const Cells& grid,
+                    const GridActivity& act, const Nodes<2>& g, const Points<2>& particles, const BoundaryConditions<2>& bc,
+                    PointLocations& loc, LinearSystem& system, std::atomic<Index>& inverted) {
+  const SceneSpec& scene = *ctx.scene;
+  const ParticleNewmark tn{scene.time.beta, scene.time.gamma, ctx.dt};
+  const SoftStiffness soft{scene.mpm.soft_c1, scene.mpm.soft_c2};
+  const double c_c = scene.mpm.receding_contact;
+  const bool receding = c_c > 0.0 && loc.receding.used();
+  const double mu = scene.materials[std::size_t(scene.bodies[0].material)].mu;
+  // About 64 particles' work per task: cells of a fine body hold tens to thousands of them.
+  const Index grain = std::max<Index>(1, 64 * act.n_active_cells() / std::max<Index>(1, particles.X.size()));
+  for_each_active_cell_by_colour(act, [&](Index c) {
+    const Index entry = act.active_index[std::size_t(c)];
+    NodalVectors<NEN> du;
+    for (int a = 0; a < NEN; ++a) du.row(a) = g.u[grid.node(c, a)].transpose();
+    ElementVector<NEN> r = ElementVector<NEN>::Zero();
+    ElementMatrix<NEN> K = ElementMatrix<NEN>::Zero();
+    // 1. Soft stiffness (constant and linear: K du), on the flags of the step's active set.
+    const double C = act.inside_nodes.empty() ? 0.0 : soft.factor(act.inside_nodes[std::size_t(entry)], NEN);
+    if (C > 0.0) {
+      ElementMatrix<NEN> Ks = ElementMatrix<NEN>::Zero();
+      for_each_cell_gauss_point<NEN>(grid, g, c, [&](const NodalVectors<NEN>& dN, double w) { add_soft_stiffness_point<NEN>(dN, mu * C * w, Ks); });
+      ElementVector<NEN> u;
+      for (int a = 0; a < NEN; ++a) u.template segment<2>(2 * a) = du.row(a).transpose();
+      r += Ks * u;
+      K += Ks;
+    }
+    // 2. The particles.
+    const Index* pts = loc.points_in(c);
+    for (Index k = 0; k < loc.count_in(c); ++k) {
+      const Index p = pts[k];
+      const PointShape<NEN> s = point_shape<NEN>(grid, g, c, loc, p);
+      ParticlePoint<NEN> pt;
+      pt.N = s.N;
+      pt.dN = s.dN;
+      pt.dN_trial = receding ? particle_trial_gradients<NEN>(s.dN, loc.receding[p], c_c) : s.dN;
+      pt.mass = particles.mass[p], pt.V0 = particles.volume[p];
+      pt.F_n = particles.F[p];
+      pt.v_n = particles.v[p], pt.a_n = particles.a[p];
+      pt.b = bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];
+      const bool ok = std::visit([&](const auto& m) { return add_particle_newmark_point<NEN>(m, tn, pt, du, loc.F[p], r, tangent ? &K : nullptr); },
+                                 materials[std::size_t(particles.body[p])].model);
+      if (!ok) return void(inverted.fetch_add(1, std::memory_order_relaxed));
+    }
+    scatter_cell<2 * NEN>(entry, system.scatter[0], bc, g, tangent, r, K, system);
+  }, grain);
+}
+
+}  // namespace
+
+template Eigen::Matrix<double, 4, 2> particle_trial_gradients<4>(const Eigen::Matrix<double, 4, 2>&, Index, double);
+template Eigen::Matrix<double, 9, 2> particle_trial_gradients<9>(const Eigen::Matrix<double, 9, 2>&, Index, double);
+
+AssemblyResult assemble_particle_newmark(const StepContext& ctx, bool tangent, const std::vector<BodyMaterial>& materials, const Cells& grid,
+                                         const GridActivity& activity, const Nodes<2>& grid_nodes, const Points<2>& particles,
+                                         const BoundaryConditions<2>& bc, PointLocations& loc, LinearSystem& system) {
+  auto& A = system.pattern.matrix;
+  if (tangent) std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+  system.residual_full.setZero();
+  std::atomic<Index> inverted{0};
+  if (grid.stride == 9) assemble_cells<9>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted);
+  else assemble_cells<4>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted);
+  // External nodal loads (none yet: body forces act at the particles) and the free rows.
+  const DofMap& dofs = system.dofs;
+  for_each_index(dofs.n_dofs(), [&](Index dof) {
+    const Index eq = dofs.equation[std::size_t(dof)];
+    if (dofs.kind[std::size_t(dof)] != DofKind::absent) system.residual_full[dof] -= bc.external[dof];
+    if (eq != kNoIndex) system.residual[eq] = system.residual_full[dof];
+  });
+  return {inverted.load()};
+}
+
+}  // namespace loom

@@ -1,0 +1,53 @@
+// Scatter of one grid cell's local residual and tangent into the grid's Newton system (the mpm recipe's
+// assembly systems): local dofs are the cell scatter's; on prescribed dofs that lag their target the
+// residual gets the Dirichlet lift K (target - value), so one Newton step lands on the target. Active cells
+// are visited colour by colour (cells of one colour share no node): race-free and thread-count independent.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "engine/core/parallel.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/grid_activity.hpp"
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/nodes.hpp"
+
+namespace loom {
+
+template <class Body>
+void for_each_active_cell_by_colour(const GridActivity& act, Body&& body, Index grain = kParallelGrain) {
+  for (std::size_t k = 0; k + 1 < act.colour_offsets.size(); ++k)
+    for_each_in(act.active_by_colour.data() + act.colour_offsets[k], act.colour_offsets[k + 1] - act.colour_offsets[k], body,
+                Execution::parallel, grain);
+}
+
+inline double dof_value(const Nodes<2>& g, Index dof, int pn) {
+  const Index node = dof / pn;
+  const int comp = dof % pn;
+  return comp < 2 ? g.u[node][comp] : g.p[node];
+}
+
+template <int NE>
+void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, bool tangent,
+                  Eigen::Matrix<double, NE, 1>& r, const Eigen::Matrix<double, NE, NE>& K, LinearSystem& system) {
+  const int pn = system.dofs.per_node;
+  Eigen::Matrix<double, NE, 1> gap = Eigen::Matrix<double, NE, 1>::Zero();
+  bool lagging = false;
+  for (int k = 0; k < NE; ++k) {
+    const Index dof = sc.cell_dof(entry, k);
+    if (system.dofs.kind[std::size_t(dof)] != DofKind::prescribed) continue;
+    gap[k] = bc.target[dof] - dof_value(g, dof, pn);
+    lagging = lagging || gap[k] != 0.0;
+  }
+  if (lagging) r += K * gap;
+  for (int a = 0; a < NE; ++a) system.residual_full[sc.cell_dof(entry, a)] += r[a];
+  if (!tangent) return;
+  double* values = system.pattern.matrix.valuePtr();
+  for (int a = 0; a < NE; ++a)
+    for (int b = 0; b < NE; ++b) {
+      const Index s = sc.matrix_slot(entry, a, b);
+      if (s != kNoIndex) values[s] += K(a, b);
+    }
+}
+
+}  // namespace loom
