@@ -22,12 +22,15 @@ endfunction()
 
 # loom_add_benchmark(NAME bench_x SOURCES bench_x.cpp [LIBS ...]): also a ctest smoke run (label perf).
 function(loom_add_benchmark)
-  cmake_parse_arguments(B "" "NAME" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(B "" "NAME;SMOKE" "SOURCES;LIBS" ${ARGN})
+  if(NOT B_SMOKE)
+    set(B_SMOKE "/1024/|/1000/|/16/")  # the smallest size of most benchmarks
+  endif()
   add_executable(${B_NAME} ${B_SOURCES})
   target_link_libraries(${B_NAME} PRIVATE benchmark::benchmark ${B_LIBS})
   loom_set_warnings(${B_NAME})
   if(LOOM_BUILD_TESTS)
-    add_test(NAME ${B_NAME}_smoke COMMAND ${B_NAME} --benchmark_min_time=0.01 --benchmark_filter=/1024/|/1000/|/16/)
+    add_test(NAME ${B_NAME}_smoke COMMAND ${B_NAME} --benchmark_min_time=0.01 --benchmark_filter=${B_SMOKE})
     set_tests_properties(${B_NAME}_smoke PROPERTIES LABELS "perf_smoke" WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   endif()
 endfunction()

@@ -12,26 +12,9 @@ namespace {
 constexpr int kSteps = 4;
 
 void run_steps(benchmark::State& state, const SceneSpec& scene) {
-  std::map<std::string, TimerStats> totals;
-  long long particles = 0, iterations = 0, newton = 0;
-  bench::with_threads(int(state.range(1)), [&] {
-    for (auto _ : state) {
-      state.PauseTiming();
-      RunOptions options;
-      options.write_files = false;
-      options.progress = false;
-      MpmRun run(scene, options);
-      particles = run.model().particles.X.size();
-      state.ResumeTiming();
-      const RunSummary s = run.run();
-      state.PauseTiming();
-      if (!s.converged) state.SkipWithError(s.failure.c_str());
-      newton += s.newton_iterations;
-      for (const auto& [name, t] : run.timers().snapshot()) totals[name].total += t.total;
-      ++iterations;
-      state.ResumeTiming();
-    }
-  });
+  bench::MpmRunTotals r = bench::time_mpm_runs(state, scene);
+  auto& totals = r.timers;
+  const long long particles = r.particles, iterations = r.runs, newton = r.newton;
   const double steps = double(iterations) * kSteps;
   state.SetItemsProcessed(int64_t(double(particles) * steps));
   state.counters["particles"] = double(particles);

@@ -1,6 +1,7 @@
-// Shared set-up of the MPM benchmarks: runs a body on a given number of oneTBB threads, and builds the
+// Shared set-up of the MPM benchmarks: runs a body on a given number of oneTBB threads, builds the
 // dynamic Cook's membrane (scenes/cooks_membrane_mpm_dynamic.toml) with about `particles` material points
-// (3 per body cell; the body mesh is refined to reach the count, the grid stays h = 0.1).
+// (3 per body cell; the body mesh is refined to reach the count, the grid stays h = 0.1), and times whole
+// runs of the mpm recipe (the run built untimed in each benchmark iteration).
 #pragma once
 
 #include <oneapi/tbb/global_control.h>
@@ -10,6 +11,11 @@
 #include <string>
 #include <vector>
 
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "engine/methods/mpm_method.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace loom::bench {
@@ -28,6 +34,38 @@ inline SceneSpec cooks_dynamic(long long particles, int steps, const std::string
   return load_scene(file, {"body[0].mesh.divisions=[" + std::to_string(nx) + "," + std::to_string(ny) + "]", "body[0].particles_per_cell=3",
                            "time.steps=" + std::to_string(steps), "output.every=0", "solver.residual_relative=1e-6",
                            "grid.cells=\"" + cells + "\""});
+}
+
+// Runs `scene` once per benchmark iteration on state.range(1) threads; returns the runs' timer totals (summed
+// over the iterations), and the particle count, number of runs and Newton iterations.
+struct MpmRunTotals {
+  std::map<std::string, TimerStats> timers;
+  long long particles = 0, runs = 0, newton = 0;
+};
+inline MpmRunTotals time_mpm_runs(benchmark::State& state, const SceneSpec& scene) {
+  MpmRunTotals r;
+  with_threads(int(state.range(1)), [&] {
+    for (auto _ : state) {
+      state.PauseTiming();
+      RunOptions options;
+      options.write_files = false;
+      options.progress = false;
+      MpmRun run(scene, options);
+      r.particles = run.model().particles.X.size();
+      state.ResumeTiming();
+      const RunSummary s = run.run();
+      state.PauseTiming();
+      if (!s.converged) {
+        state.SkipWithError(s.failure.c_str());
+        break;  // no ResumeTiming after an error
+      }
+      r.newton += s.newton_iterations;
+      for (const auto& [name, t] : run.timers().snapshot()) r.timers[name].total += t.total, r.timers[name].calls += t.calls;
+      ++r.runs;
+      state.ResumeTiming();
+    }
+  });
+  return r;
 }
 
 }  // namespace loom::bench

@@ -32,7 +32,21 @@ def neo_hooke_plane_strain_compression_reaction(t, E, nu, W, H, rate):
     return (mu * l2 + (lam * math.log(J) - mu) / l2) * W
 
 
-ANALYTIC = {"neo_hooke_plane_strain_compression_reaction": neo_hooke_plane_strain_compression_reaction}
+def rolling_disk_x(t, g, theta):
+    """Distance travelled by a uniform disk rolling without slip down an incline from rest: the
+    acceleration is g sin(theta) / (1 + I / (m R^2)) with I = m R^2 / 2 (seed 004 eq 49)."""
+    return g * math.sin(theta) * t * t / 3.0
+
+
+def quadratic_fit(points):
+    """Least-squares coefficients (c0, c1, c2) of c0 + c1 t + c2 t^2 through (t, y) points."""
+    A = np.array([[1.0, t, t * t] for t, _ in points])
+    y = np.array([v for _, v in points])
+    return np.linalg.lstsq(A, y, rcond=None)[0]
+
+
+ANALYTIC = {"neo_hooke_plane_strain_compression_reaction": neo_hooke_plane_strain_compression_reaction,
+            "rolling_disk_x": rolling_disk_x}
 
 # Sub-phases shown in the time breakdown, by self time (tools/study computes it), in this order.
 PHASES = [("newton/assemble", "assemble"), ("newton/solve/factorize", "factorize"),

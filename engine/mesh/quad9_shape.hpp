@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -57,15 +58,19 @@ inline Quad9Gradients quad9_gradients(const Quad9Coordinates& x, const Vec2& xi,
 
 // Inverse isoparametric map: xi with x(xi) = x by Newton from the centre (exact in one step for a cell
 // whose nodes sit on a regular lattice of a rectangle). Returns false if it does not converge.
-// Converged when the Newton correction of xi (of order 1 on the cell) is at round-off.
+// Converged when the Newton correction of xi (of order 1 on the cell) is at round-off, which is that of the
+// coordinates relative to the cell's size: a small cell far from the origin (x = 20, h = 0.05) resolves xi
+// only to about 1e-13.
 inline bool quad9_inverse_map(const Quad9Coordinates& nodes, const Vec2& x, Vec2& xi) {
   xi.setZero();
+  const double size = (nodes.row(2) - nodes.row(0)).norm();
+  const double tol = 1e-13 * std::max(1.0, (x.cwiseAbs().maxCoeff() + size) / size);
   for (int it = 0; it < 20; ++it) {
     const Vec2 r = nodes.transpose() * quad9_shape(xi) - x;
     const Eigen::Matrix2d J = nodes.transpose() * quad9_reference_gradients(xi);
     const Vec2 step = J.inverse() * r;
     xi -= step;
-    if (step.norm() <= 1e-13) return true;
+    if (step.norm() <= tol) return true;
   }
   return false;
 }

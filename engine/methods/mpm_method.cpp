@@ -43,9 +43,7 @@ MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
 
 MpmRun::~MpmRun() = default;
 
-void MpmRun::build_graph() {
-  graph_ = std::make_unique<StepGraph>("mpm", ctx_, timers_);
-  StepGraph& g = *graph_;
+void MpmRun::name_stores(StepGraph& g) {
   g.name_store(&m_.layout, "grid_layout");
   g.name_store(&m_.grid, "grid_cells");
   g.name_store(&m_.grid_nodes, "grid_nodes");
@@ -59,9 +57,30 @@ void MpmRun::build_graph() {
   g.name_store(&m_.materials, "materials");
   g.name_store(&m_.bc, "grid_conditions");
   g.name_store(&m_.system, "linear_system");
+  g.name_store(&m_.outside_node, "outside_nodes");
+  g.name_store(&m_.wall_sides, "wall_sides");
+  g.name_store(&m_.probe_particle, "probe_particles");
   g.name_store(&status_, "step_status");
   g.name_store(&probe_writer_, "probes.csv");
   g.name_store(&writer_, "vtk_writer");
+}
+
+// Probes and frames, on a converged state at the end of a step.
+void MpmRun::add_output_nodes(StepGraph& g) {
+  const auto probes = g.add_node("probes",
+                                 {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
+                                  {&probe_writer_}},
+                                 [this] { probes_node(); });
+  g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
+  const auto output = g.add_node("output", {{&m_.particles, &m_.materials, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.particle_loc}, {&writer_}},
+                                 [this] { output_node(); }, "snapshot here; the VTK files are written while the next step runs");
+  g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
+}
+
+void MpmRun::build_graph() {
+  graph_ = std::make_unique<StepGraph>("mpm", ctx_, timers_);
+  StepGraph& g = *graph_;
+  name_stores(g);
 
   // 1. Initialisation phase (Algorithm 1 lines 5-15).
   g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
@@ -83,14 +102,7 @@ void MpmRun::build_graph() {
   g.run_if(move, &status_, [this] { return status_.converged; });
   const auto tracers = g.add_system("move_probe_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.probe_loc, m_.probe_points);
   g.run_if(tracers, &status_, [this] { return status_.converged; });
-  const auto probes = g.add_node("probes",
-                                 {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
-                                  {&probe_writer_}},
-                                 [this] { probes_node(); });
-  g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
-  const auto output = g.add_node("output", {{&m_.particles, &m_.materials, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.particle_loc}, {&writer_}},
-                                 [this] { output_node(); }, "snapshot here; the VTK files are written while the next step runs");
-  g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
+  add_output_nodes(g);
   g.build();
 }
 
@@ -98,25 +110,7 @@ void MpmRun::build_graph() {
 void MpmRun::build_particle_newmark_graph() {
   graph_ = std::make_unique<StepGraph>("mpm (particle Newmark)", ctx_, timers_);
   StepGraph& g = *graph_;
-  g.name_store(&m_.grid, "grid_cells");
-  g.name_store(&m_.grid_nodes, "grid_nodes");
-  g.name_store(&m_.activity, "grid_activity");
-  g.name_store(&m_.particles, "particles");
-  g.name_store(&m_.particle_loc, "particle_locations");
-  g.name_store(&m_.probe_points, "probe_points");
-  g.name_store(&m_.materials, "materials");
-  g.name_store(&m_.bc, "grid_conditions");
-  g.name_store(&m_.system, "linear_system");
-  g.name_store(&status_, "step_status");
-  g.name_store(&probe_writer_, "probes.csv");
-  g.name_store(&writer_, "vtk_writer");
-  g.name_store(&m_.layout, "grid_layout");
-  g.name_store(&m_.outside_node, "outside_nodes");
-  g.name_store(&m_.wall_sides, "wall_sides");
-  g.name_store(&m_.probe_particle, "probe_particles");
-  g.name_store(&m_.traction_points, "traction_points");
-  g.name_store(&m_.traction_loc, "traction_point_locations");
-
+  name_stores(g);
   g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
   g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
   g.add_system("flag_soft_cells", &flag_soft_cells, m_.grid, m_.outside_node, m_.activity);
@@ -131,14 +125,7 @@ void MpmRun::build_particle_newmark_graph() {
   g.run_if(commit, &status_, [this] { return status_.converged; });
   const auto follow = g.add_system("follow_particles", &follow_particles, m_.probe_particle, m_.particles, m_.probe_points);
   g.run_if(follow, &status_, [this] { return status_.converged; });
-  const auto probes = g.add_node("probes",
-                                 {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
-                                  {&probe_writer_}},
-                                 [this] { probes_node(); });
-  g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
-  const auto output = g.add_node("output", {{&m_.particles, &m_.materials, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.particle_loc}, {&writer_}},
-                                 [this] { output_node(); }, "snapshot here; the VTK files are written while the next step runs");
-  g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
+  add_output_nodes(g);
   g.build();
 }
 

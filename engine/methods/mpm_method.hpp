@@ -7,6 +7,11 @@
 // failed Newton solve leaves the particles untouched and the time loop simply reruns the step with half the
 // time step. Interpolation, probes and output run only on a converged state; the VTK files (particles
 // .vtp, active grid .vtu, both in the .pvd) are written while the next step runs.
+// With mpm.scheme = "particle_newmark" (seed 004, Aulisa & Capodaglio) the graph is
+//   locate_particles -> activate_grid -> flag_soft_cells -> mark_receding_particles -> apply_grid_loads
+//     -> newton [assemble_particle_newmark -> solve -> update]* -> commit_particle_newmark, follow_particles
+//     -> {probes, output}
+// (nothing projected: the particles carry the Newmark state).
 #pragma once
 
 #include <memory>
@@ -44,6 +49,8 @@ class MpmRun final : public MethodRun {
   const LinearSolve& solver() const { return solver_; }
 
  private:
+  void name_stores(StepGraph& g);
+  void add_output_nodes(StepGraph& g);
   void build_graph();
   void build_particle_newmark_graph();
   void write_initial_state();

@@ -75,6 +75,20 @@ TEST(Quad9Shape, PhysicalGradientsAndInverseMapOnACurvedCell) {
   }
 }
 
+// A small cell far from the origin (the rolling disk's grid at J = 4 near x = 20): the inverse map converges
+// to the coordinates' round-off, every time.
+TEST(Quad9Shape, InverseMapOfASmallCellFarFromTheOrigin) {
+  const Vec2 lattice[9] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1}, {1, 0}, {0, 1}, {-1, 0}, {0, 0}};
+  Quad9Coordinates X;
+  for (int a = 0; a < 9; ++a) X.row(a) << 20.0375 + 0.0375 * lattice[a].x(), 1.1 + 0.0271 * lattice[a].y();
+  for (int k = 0; k < 1000; ++k) {
+    const Vec2 s(-1.0 + 2.0 * ((k * 37) % 1000) / 999.0, -1.0 + 2.0 * ((k * 91) % 1000) / 999.0);
+    Vec2 xi;
+    ASSERT_TRUE(quad9_inverse_map(X, X.transpose() * quad9_shape(s), xi)) << k;
+    EXPECT_NEAR((xi - s).norm(), 0.0, 1e-11);
+  }
+}
+
 TEST(Quad9Shape, GaussRuleIsExactToDegreeFivePerDirection) {
   const Quad9Gauss& rule = quad9_gauss();
   for (int p = 0; p <= 5; ++p)
