@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "engine/store/cells.hpp"
+
 namespace loom {
 
 std::vector<BoundaryEdge> boundary_edges(const std::vector<Index>& connectivity, int stride) {
@@ -12,12 +14,13 @@ std::vector<BoundaryEdge> boundary_edges(const std::vector<Index>& connectivity,
     int side;
   };
   const Index n_cells = Index(connectivity.size() / std::size_t(stride));
+  const int corners = corners_of_stride(stride);
   std::vector<Half> halves;
-  halves.reserve(std::size_t(n_cells) * 3);
+  halves.reserve(std::size_t(n_cells) * std::size_t(corners));
   for (Index c = 0; c < n_cells; ++c)
-    for (int s = 0; s < 3; ++s) {
+    for (int s = 0; s < corners; ++s) {
       const Index a = connectivity[std::size_t(c) * stride + s];
-      const Index b = connectivity[std::size_t(c) * stride + (s + 1) % 3];
+      const Index b = connectivity[std::size_t(c) * stride + (s + 1) % corners];
       const auto lo = std::uint64_t(std::min(a, b)), hi = std::uint64_t(std::max(a, b));
       halves.push_back({(lo << 32) | hi, a, b, c, s});
     }

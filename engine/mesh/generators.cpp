@@ -91,16 +91,30 @@ MeshData unit_grid(int nx, int ny, GridPattern pattern) {
   return mesh;
 }
 
+// The same nodes as the right pattern, kept as (nx ny) counter-clockwise quadrilaterals.
+MeshData unit_quad_grid(int nx, int ny) {
+  MeshData mesh = unit_grid(nx, ny, GridPattern::right);
+  mesh.triangles.clear();
+  const auto node = [&](int i, int r) { return Index(r * (nx + 1) + i); };
+  for (int r = 0; r < ny; ++r)
+    for (int i = 0; i < nx; ++i) mesh.quads.insert(mesh.quads.end(), {node(i, r), node(i + 1, r), node(i + 1, r + 1), node(i, r + 1)});
+  return mesh;
+}
+
+MeshData unit_mesh(int nx, int ny, GridPattern pattern, bool quads) {
+  return quads ? unit_quad_grid(nx, ny) : unit_grid(nx, ny, pattern);
+}
+
 }  // namespace
 
 MeshData generate_rectangle(const RectangleSpec& spec) {
-  MeshData mesh = unit_grid(spec.nx, spec.ny, spec.pattern);
+  MeshData mesh = unit_mesh(spec.nx, spec.ny, spec.pattern, spec.quads);
   for (auto& p : mesh.X) p = spec.origin + p.cwiseProduct(spec.size);
   return mesh;
 }
 
-MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern) {
-  MeshData mesh = unit_grid(nx, ny, pattern);
+MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern, bool quads) {
+  MeshData mesh = unit_mesh(nx, ny, pattern, quads);
   // Bilinear map of the unit square onto the trapezoid: xi along x (clamped edge at xi = 0), eta along y.
   const Vec2 c00(0, 0), c10(48, 44), c11(48, 60), c01(0, 44);
   for (auto& p : mesh.X) {
@@ -113,15 +127,21 @@ MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern) {
 void distort_interior_nodes(MeshData& mesh, double fraction, std::uint64_t seed) {
   if (fraction <= 0.0) return;
   const Index n = Index(mesh.X.size());
+  const bool quads = !mesh.quads.empty();
   std::vector<char> on_boundary(std::size_t(n), 0);
-  for (const auto& e : boundary_edges(mesh.triangles, 3)) on_boundary[std::size_t(e.a)] = on_boundary[std::size_t(e.b)] = 1;
+  for (const auto& e : boundary_edges(quads ? mesh.quads : mesh.triangles, quads ? 4 : 3)) on_boundary[std::size_t(e.a)] = on_boundary[std::size_t(e.b)] = 1;
+  std::vector<Index> triangles = mesh.triangles;
+  for (std::size_t q = 0; q < mesh.quads.size(); q += 4) {
+    const Index* v = mesh.quads.data() + q;
+    triangles.insert(triangles.end(), {v[0], v[1], v[2], v[0], v[2], v[3], v[0], v[1], v[3], v[1], v[2], v[3]});
+  }
   // Each node moves by at most fraction * h, h = its smallest altitude over the adjacent triangles. The
   // doubled area 2A of a triangle is affine in each corner, so moves d_a change it by at most
   // sum_a |d_a| |e_a| + sum_pairs |d_b x d_c| <= 3 f 2A + 3 f^2 2A (|e_a| h_a = 2A and h_b h_c <= 2A):
   // no triangle can invert while 3 f + 3 f^2 < 1, i.e. f < 0.264 (the schema allows up to 0.25).
   std::vector<double> h(std::size_t(n), std::numeric_limits<double>::max());
-  for (Index t = 0; t < mesh.n_triangles(); ++t) {
-    const Index* v = mesh.triangles.data() + 3 * std::size_t(t);
+  for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
+    const Index* v = triangles.data() + 3 * t;
     const Vec2 &x0 = mesh.X[std::size_t(v[0])], &x1 = mesh.X[std::size_t(v[1])], &x2 = mesh.X[std::size_t(v[2])];
     const double two_area = std::abs((x1 - x0).x() * (x2 - x0).y() - (x2 - x0).x() * (x1 - x0).y());
     for (int k = 0; k < 3; ++k) {

@@ -19,17 +19,20 @@ struct RectangleSpec {
   Vec2 size = Vec2::Ones();
   int nx = 1, ny = 1;
   GridPattern pattern = GridPattern::right;
+  bool quads = false;  // quadrilaterals (MeshData::quads) instead of triangles; pattern unused
 };
 
 MeshData generate_rectangle(const RectangleSpec& spec);
 
 // Cook's membrane: the trapezoid (0,0), (48,44), (48,60), (0,44), meshed by bilinear mapping of an
-// nx by ny structured grid (nx along the clamped-to-loaded direction).
-MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern);
+// nx by ny structured grid (nx along the clamped-to-loaded direction), cut into triangles by `pattern` or
+// kept as quadrilaterals.
+MeshData generate_cooks_membrane(int nx, int ny, GridPattern pattern, bool quads = false);
 
 // Moves interior nodes by a random vector of length up to `fraction` of the node's smallest altitude in
 // its triangles (deterministic for a given seed); boundary nodes stay, so the outline is unchanged.
-// No triangle inverts for fraction < 0.264.
+// No triangle inverts for fraction < 0.264. A quadrilateral counts as the four triangles of its two
+// diagonals: none inverts, so every quadrilateral stays convex.
 void distort_interior_nodes(MeshData& mesh, double fraction, std::uint64_t seed);
 
 void scale_mesh(MeshData& mesh, double factor);

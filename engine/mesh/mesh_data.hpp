@@ -26,6 +26,7 @@ struct MeshRegion {
 struct MeshData {
   std::vector<Vec2> X;           // corner node coordinates
   std::vector<Index> triangles;  // 3 node indices per triangle, counter-clockwise
+  std::vector<Index> quads;      // or 4 per quadrilateral, counter-clockwise (generators asked for quads)
   // 6-node triangles read from a file: the mid-nodes of edges (c0,c1), (c1,c2), (c2,c0) of every triangle,
   // indices into mid_X. Empty for generated meshes (their mid-nodes are made on straight edges).
   std::vector<Vec2> mid_X;

@@ -26,6 +26,11 @@ std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, co
   return e;
 }
 
+namespace {
+// Cells with a node on each side (tri6, quad9); a quad9 centre node is never on the boundary.
+bool quadratic(const Cells& cb) { return cb.stride == 6 || cb.stride == 9; }
+}  // namespace
+
 BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const Nodes<2>& nodes,
                                                 const std::vector<Cells>& cells, const std::vector<Index>& node_body,
                                                 const BodyRegions& regions, int dofs_per_node, bool tie_mid_nodes,
@@ -48,14 +53,16 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
   std::vector<Edge> edges;
   for (const Cells& cb : cells)
     for (const auto& e : boundary_edges(cb.nodes.values(), cb.stride))
-      edges.push_back({e.a, e.b, cb.stride == 6 ? cb.node(e.cell, 3 + e.side) : kNoIndex});
+      edges.push_back({e.a, e.b, quadratic(cb) ? cb.node(e.cell, corners_of_stride(cb.stride) + e.side) : kNoIndex});
 
   // The nodes each region selects: in the box, or in the group (mid-nodes: both corners of their edge).
   std::vector<std::pair<Index, Index>> mid_corners(std::size_t(nodes.size()), {kNoIndex, kNoIndex});
   for (const Cells& cb : cells)
-    if (cb.stride == 6)
+    if (quadratic(cb)) {
+      const int k = corners_of_stride(cb.stride);
       for (Index c = 0; c < cb.size(); ++c)
-        for (int s = 0; s < 3; ++s) mid_corners[std::size_t(cb.node(c, 3 + s))] = {cb.node(c, s), cb.node(c, (s + 1) % 3)};
+        for (int s = 0; s < k; ++s) mid_corners[std::size_t(cb.node(c, k + s))] = {cb.node(c, s), cb.node(c, (s + 1) % k)};
+    }
   std::vector<std::vector<char>> member(scene.boundaries.size(), std::vector<char>(std::size_t(nodes.size()), 0));
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
     const BoundarySpec& spec = scene.boundaries[k];

@@ -15,12 +15,12 @@ MeshData generate_body_mesh(const MeshSpec& spec) {
   switch (spec.generator) {
     case MeshGenerator::rectangle: {
       RectangleSpec r;
-      r.origin = spec.origin, r.size = spec.size, r.nx = spec.nx, r.ny = spec.ny, r.pattern = spec.pattern;
+      r.origin = spec.origin, r.size = spec.size, r.nx = spec.nx, r.ny = spec.ny, r.pattern = spec.pattern, r.quads = spec.quads;
       mesh = generate_rectangle(r);
       break;
     }
     case MeshGenerator::cooks_membrane:
-      mesh = generate_cooks_membrane(spec.nx, spec.ny, spec.pattern);
+      mesh = generate_cooks_membrane(spec.nx, spec.ny, spec.pattern, spec.quads);
       break;
     case MeshGenerator::file: {
       std::ostringstream where;
@@ -41,9 +41,10 @@ MeshData generate_body_mesh(const MeshSpec& spec) {
 std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vector<Cells>& cells, BodyRegions* regions) {
   // Corner nodes of every body first, then the mid-nodes of quadratic bodies: the corners are the
   // particles PFEM keeps across remeshes, the mid-nodes are dropped and re-created (seed 000 §4.1).
+  // Quadrilateral bodies (quad9) come from the generators as corner quadrilaterals.
   std::vector<Index> node_body;
   std::vector<Vec2> X;
-  std::vector<std::vector<Index>> corner_triangles(scene.bodies.size());
+  std::vector<std::vector<Index>> corner_triangles(scene.bodies.size()), corner_quads(scene.bodies.size());
   std::vector<MeshData> meshes(scene.bodies.size());
   if (regions) regions->assign(scene.bodies.size(), {});
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -53,6 +54,7 @@ std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vect
     X.insert(X.end(), mesh.X.begin(), mesh.X.end());
     node_body.insert(node_body.end(), mesh.X.size(), Index(b));
     for (Index v : mesh.triangles) corner_triangles[b].push_back(offset + v);
+    for (Index v : mesh.quads) corner_quads[b].push_back(offset + v);
     if (!regions) continue;
     for (auto r : mesh.regions) {
       for (Index& v : r.corners) v += offset;
@@ -73,6 +75,8 @@ std::vector<Index> build_mesh(const SceneSpec& scene, Nodes<2>& nodes, std::vect
         connectivity.insert(connectivity.end(), corner_triangles[b].begin() + std::ptrdiff_t(3 * t), corner_triangles[b].begin() + std::ptrdiff_t(3 * t + 3));
         for (int s = 0; s < 3; ++s) connectivity.push_back(offset + meshes[b].mid_nodes[3 * t + std::size_t(s)]);
       }
+    } else if (type == CellType::quad9) {
+      connectivity = add_quad9_nodes(X, corner_quads[b]);
     } else {
       connectivity = type == CellType::tri6 ? add_mid_nodes(X, corner_triangles[b]) : corner_triangles[b];
     }

@@ -77,9 +77,13 @@ void FemRun::check_model() const {
   for (Index i = 0; i < m_.nodes.size(); ++i) X[std::size_t(i)] = m_.nodes.X[i];
   std::vector<Index> corners, corner_body;
   for (const auto& cb : m_.cells)
-    for (Index c = 0; c < cb.size(); ++c) {
+    for (Index c = 0; c < cb.size(); ++c) {  // quadrilaterals as two corner triangles
       for (int a = 0; a < 3; ++a) corners.push_back(cb.node(c, a));
       corner_body.push_back(cb.body[c]);
+      if (corners_of_stride(cb.stride) == 4) {
+        for (int a : {0, 2, 3}) corners.push_back(cb.node(c, a));
+        corner_body.push_back(cb.body[c]);
+      }
     }
   check_point_probes_inside(scene_, X, corners, corner_body);
 }

@@ -205,7 +205,10 @@ void MpmRun::describe(std::ostream& os) const {
   }
   if (body.particles.kind != ParticleGenerator::none) os << ", " << m_.particles.X.size() << " generated particles, grid ";
   else os << ", " << body.particles_per_cell << " particles per body cell, grid ";
-  os << (m_.layout.structured ? "structured (arithmetic locate)" : "unstructured (walk)") << "\n";
+  os << (!m_.layout.x_lines.empty() ? "graded rectangle (binary-search locate)"
+          : m_.layout.structured    ? "structured (arithmetic locate)"
+                                    : "unstructured (walk)")
+     << "\n";
   os << "stores:\n";
   {
     StoreReport r(os, "grid_nodes", m_.grid_nodes.size());

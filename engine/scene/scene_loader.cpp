@@ -159,6 +159,19 @@ class Loader {
     s.materials.push_back(m);
   }
 
+  // quad9 is an element of method fem on generated quadrilaterals (PFEM remeshes triangles; the MPM grids
+  // take their cell type from [grid]; gmsh quadrilaterals are not read yet).
+  void check_quad9_body(SceneSpec& s, const TableReader& t, BodySpec& b) {
+    if (s.scene.method != Method::fem)
+      t.error("element", std::string("quad9 is an element of method = \"fem\" (method ") + method_name(s.scene.method) +
+                             (s.scene.method == Method::mpm ? ": a quad9 background grid is grid.cells = \"quad9\")" : ")"));
+    const auto mesh = t.table("mesh");
+    if (b.mesh.generator == MeshGenerator::file)
+      mesh.error("file", "element quad9 needs a generated mesh (generator = \"rectangle\" or \"cooks_membrane\"); mesh files are read as triangles");
+    if (mesh.has("pattern")) mesh.error("pattern", "pattern cuts quadrilaterals into triangles: element quad9 keeps them, leave pattern out");
+    b.mesh.quads = true;
+  }
+
   void read_body(SceneSpec& s, const TableReader& t) {
     BodySpec b;
     b.name = read_name(t);
@@ -170,7 +183,8 @@ class Loader {
       t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
     b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi},
                                                         {"p1p1_up", Formulation::p1p1_up}, {"es_up", Formulation::es_up},
-                                                        {"es_u", Formulation::es_u}, {"fem_up", Formulation::fem_up}, {"fem_u", Formulation::fem_u}});
+                                                        {"es_u", Formulation::es_u}, {"fem_up", Formulation::fem_up}, {"fem_u", Formulation::fem_u},
+                                                        {"quad9", Formulation::quad9}});
     read_mpm_body(s, t, b);
     read_smoothed_body(s, t, b);
     if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&
@@ -193,6 +207,7 @@ class Loader {
     }
     read_particle_generator(t, b);
     if (b.particles.kind == ParticleGenerator::none) read_mesh(t.table("mesh"), b.mesh);
+    if (b.element == Formulation::quad9) check_quad9_body(s, t, b);
     b.body_force = read_vector(t.table("body_force"), diag_);
     warn_if_locking(s, t, b);
     s.bodies.push_back(b);

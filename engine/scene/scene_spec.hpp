@@ -87,6 +87,7 @@ struct MeshSpec {
   Vec2 size = Vec2::Ones();
   int nx = 1, ny = 1;
   GridPattern pattern = GridPattern::right;
+  bool quads = false;  // generators: quadrilaterals (the body's element is quad9), pattern unused
   double scale = 1.0;
   double distortion = 0.0;
   long long seed = 1;

@@ -103,8 +103,10 @@ std::vector<KeySpec> build_schema() {
                   "§4.2), p1p1_up (method mpm: mixed linear displacement / linear pressure on the grid, [Moreno et al.] eqs 16-26). Method mpm "
                   "takes p1 or p1p1_up; they are the formulation on the background grid. es_up, es_u: edge-based smoothed linear "
                   "triangles ([Reinold 2021] §3), mixed displacement / nodal pressure with PPP (alpha_stab) or displacement only; fem_up, "
-                  "fem_u: the same integrated per triangle; all four with model hencky_perzyna or linear_elastic (geometrically linear).")
-                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u"}).by_default("p1"));
+                  "fem_u: the same integrated per triangle; all four with model hencky_perzyna or linear_elastic (geometrically linear). "
+                  "quad9 (method fem): biquadratic displacement quadrilateral, 3 x 3 Gauss points ([Aulisa 2019] §2.2), on the "
+                  "quadrilaterals of a generated mesh (rectangle, cooks_membrane; no pattern).")
+                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u", "quad9"}).by_default("p1"));
   s.push_back(key("body[].alpha_stab", K::real,
                   "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "
                   "([Reinold 2021] eq 48); 0: the unstabilised u-p element (ES-FEM-UP); the paper uses 0.5 (Cook's membrane) and 200 "

@@ -26,8 +26,9 @@ enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9 };
 //             quadrature points (seed 003 eqs 16-26).
 //  es_up, es_u: edge-based smoothed linear triangles (seed 001 §3): integrated over the smoothing domain of
 //             each edge, mixed u-p (nodal pressure, PPP with alpha_stab) or displacement only;
-//  fem_up, fem_u: the same kernels integrated over each triangle (the seed's FEM-UP and FEM-U).
-enum class Formulation { p1, tri6, p1p1_uphi, p1p1_up, es_up, es_u, fem_up, fem_u };
+//  fem_up, fem_u: the same kernels integrated over each triangle (the seed's FEM-UP and FEM-U);
+//  quad9:     biquadratic displacement quadrilateral (quad9, 3 x 3 Gauss points; seed 004's FEM bodies).
+enum class Formulation { p1, tri6, p1p1_uphi, p1p1_up, es_up, es_u, fem_up, fem_u, quad9 };
 
 inline const char* formulation_name(Formulation f) {
   switch (f) {
@@ -39,6 +40,7 @@ inline const char* formulation_name(Formulation f) {
     case Formulation::es_u: return "es_u";
     case Formulation::fem_up: return "fem_up";
     case Formulation::fem_u: return "fem_u";
+    case Formulation::quad9: return "quad9";
   }
   return "?";
 }
@@ -53,7 +55,11 @@ inline int nodes_per_cell(CellType t) {
   }
   return 0;
 }
-inline CellType cell_type_of(Formulation f) { return f == Formulation::tri6 ? CellType::tri6 : CellType::tri3; }
+inline CellType cell_type_of(Formulation f) {
+  return f == Formulation::tri6 ? CellType::tri6 : f == Formulation::quad9 ? CellType::quad9 : CellType::tri3;
+}
+// Corner nodes of a cell of `stride` nodes: the first ones of its connectivity (tri3, tri6: 3; quad4, quad9: 4).
+inline int corners_of_stride(int stride) { return stride == 4 || stride == 9 ? 4 : 3; }
 // Formulations with the nodal dilatation phi as an unknown.
 inline bool has_dilatation(Formulation f) { return f == Formulation::p1p1_uphi; }
 // Formulations with the nodal pressure p as an unknown on a mesh (seed 001 eq 25: sigma = dev sigma + p I).
@@ -98,7 +104,7 @@ struct Cells {
   // Corner cells (tri3, quad4) and quad9: as many sides as corners. Side a of a triangle is the one opposite
   // corner a (what a walk crosses when barycentric coordinate a is negative); side a of a quadrilateral runs
   // from corner a to corner a + 1 (quad9: through mid-side node 4 + a).
-  int sides() const { return stride == 9 ? 4 : stride; }
+  int sides() const { return corners_of_stride(stride); }
   std::pair<Index, Index> side_corners(Index c, int a) const {
     if (stride == 3) return {node(c, (a + 1) % 3), node(c, (a + 2) % 3)};
     return {node(c, a), node(c, (a + 1) % sides())};

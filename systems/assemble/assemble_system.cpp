@@ -1,5 +1,6 @@
 #include "systems/assemble/assemble_system.hpp"
 
+#include <array>
 #include <atomic>
 
 #include "engine/core/errors.hpp"
@@ -9,7 +10,7 @@
 #include "systems/assemble/elements/element_mass.hpp"
 #include "systems/assemble/elements/p1_cell.hpp"
 #include "systems/assemble/elements/p1p1_uphi_cell.hpp"
-#include "systems/assemble/elements/tri6_cell.hpp"
+#include "systems/assemble/elements/isoparametric_cell.hpp"
 #include "systems/update/time_integrator.hpp"
 
 namespace loom {
@@ -85,26 +86,38 @@ void assemble_p1_block(const BlockArgs& b) {
   });
 }
 
-void assemble_tri6_block(const BlockArgs& b) {
-  const auto map = displacement_map<6>(b.system.dofs.per_node);
-  const CellScatterer<12> out(map, b.scatter, b.bc, b.nodes, b.system);
-  static constexpr int u_index[12] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+// tri6 and quad9: NEN nodes, NQ points; the consistent mass on the reference cell.
+template <int NEN, int NQ>
+void assemble_isoparametric_block(const BlockArgs& b) {
+  constexpr int NE = 2 * NEN;
+  const auto map = displacement_map<NEN>(b.system.dofs.per_node);
+  const CellScatterer<NE> out(map, b.scatter, b.bc, b.nodes, b.system);
+  static constexpr auto u_index = [] {
+    std::array<int, NE> k{};
+    for (int i = 0; i < NE; ++i) k[std::size_t(i)] = i;
+    return k;
+  }();
   for_each_cell_by_colour(b.cells, [&](Index c) {
-    const Tri6Cell cell = gather_tri6_cell(b.nodes, b.cells, b.quad, c);
-    Tri6Vector gap;
+    const auto cell = gather_isoparametric_cell<NEN, NQ>(b.nodes, b.cells, b.quad, c);
+    ElementVector<NEN> gap;
     const bool lagging = out.gap(c, gap);
     const bool need_K = b.tangent || lagging;
-    Tri6Vector r = Tri6Vector::Zero();
-    Tri6Matrix K = Tri6Matrix::Zero();
+    ElementVector<NEN> r = ElementVector<NEN>::Zero();
+    ElementMatrix<NEN> K = ElementMatrix<NEN>::Zero();
     const BodyMaterial& material = b.materials[std::size_t(b.cells.body[c])];
-    Mat3* F = &b.quad.F[3 * c];
-    const bool ok = std::visit([&](const auto& m) { return tri6_internal(m, cell, F, r, need_K ? &K : nullptr); }, material.model);
+    Mat3* F = &b.quad.F[NQ * c];
+    const bool ok = std::visit([&](const auto& m) { return isoparametric_internal(m, cell, F, r, need_K ? &K : nullptr); }, material.model);
     if (!ok) return void(b.inverted.fetch_add(1, std::memory_order_relaxed));
     if (b.inertia.on && b.inertia.consistent) {
-      double volume0 = 0.0;
-      for (int q = 0; q < 3; ++q) volume0 += cell.dV_n[q] / cell.F_n[q].determinant();
-      add_consistent_inertia<6, 12>(b.nodes, b.cells, c, b.inertia, material.density, tri6_consistent_mass(volume0), u_index, r,
-                                    need_K ? &K : nullptr);
+      if constexpr (NEN == 6) {
+        add_consistent_inertia<6, 12>(b.nodes, b.cells, c, b.inertia, material.density, tri6_consistent_mass(reference_volume(cell)),
+                                      u_index.data(), r, need_K ? &K : nullptr);
+      } else {
+        double dV0[NQ];
+        for (int q = 0; q < NQ; ++q) dV0[q] = cell.dV_n[q] / cell.F_n[q].determinant();
+        add_consistent_inertia<9, 18>(b.nodes, b.cells, c, b.inertia, material.density, quad9_consistent_mass(dV0), u_index.data(), r,
+                                      need_K ? &K : nullptr);
+      }
     }
     if (lagging) r += K * gap;
     out.scatter(c, r, b.tangent ? &K : nullptr);
@@ -163,7 +176,8 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
     const BlockArgs args{tangent, inertia, materials, nodes, cells[k], bc, quad[k], system.scatter[k], system, inverted};
     switch (cells[k].formulation) {
       case Formulation::p1: assemble_p1_block(args); break;
-      case Formulation::tri6: assemble_tri6_block(args); break;
+      case Formulation::tri6: assemble_isoparametric_block<6, 3>(args); break;
+      case Formulation::quad9: assemble_isoparametric_block<9, 9>(args); break;
       case Formulation::p1p1_uphi: assemble_uphi_block(args); break;
       case Formulation::p1p1_up: LOOM_ASSERT(false, "p1p1_up cells live on MPM grids (assemble_grid_system)"); break;
       case Formulation::es_up:

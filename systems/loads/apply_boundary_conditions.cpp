@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/mesh/quad9_shape.hpp"
 #include "systems/assemble/elements/tri3.hpp"
 #include "systems/assemble/elements/tri6.hpp"
 
@@ -35,6 +36,25 @@ void add_tractions(double t, const Nodes<2>& nodes, BoundaryConditions<2>& bc) {
   }
 }
 
+// quad9: the 3 x 3 Gauss rule on the isoparametric reference cell.
+template <class Exprs>
+void add_quad9_body_force(double t, const Nodes<2>& nodes, const Index* n, double rho, const Exprs& exprs, BoundaryConditions<2>& bc) {
+  Quad9Coordinates X;
+  for (int a = 0; a < 9; ++a) X.row(a) = nodes.X[n[a]].transpose();
+  const Quad9Gauss& rule = quad9_gauss();
+  for (int q = 0; q < 9; ++q) {
+    const Vec2& xi = rule.xi[std::size_t(q)];
+    const Quad9Values N = quad9_shape(xi);
+    const double dV0 = (X.transpose() * quad9_reference_gradients(xi)).determinant() * rule.weight[std::size_t(q)];
+    const Vec2 Xq = X.transpose() * N;
+    for (int d = 0; d < 2; ++d) {
+      if (exprs[std::size_t(d)] == kNoIndex) continue;
+      const double b = bc.expressions[std::size_t(exprs[std::size_t(d)])](t, Xq.x(), Xq.y());
+      for (int a = 0; a < 9; ++a) bc.external[bc.per_node * n[a] + d] += rho * b * N[a] * dV0;
+    }
+  }
+}
+
 // f_vol^A = int rho_0 N^A b dV_0 (eq 7) on the reference cell (straight, mid-nodes at the midpoints):
 // three-point rule for linear cells, the degree-4 rule for quadratic ones.
 void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& cells,
@@ -45,12 +65,16 @@ void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& 
       const auto& exprs = bc.body_force[std::size_t(body)];
       if (exprs[0] == kNoIndex && exprs[1] == kNoIndex) continue;
       const Index* n = cb.cell_nodes(c);
+      const double rho = materials[std::size_t(body)].density;
+      if (cb.type == CellType::quad9) {
+        add_quad9_body_force(t, nodes, n, rho, exprs, bc);
+        continue;
+      }
       const Vec2 X[3] = {nodes.X[n[0]], nodes.X[n[1]], nodes.X[n[2]]};
       // Seed 001's triangles know their reference area; a remeshed triangle's corners in X need not form one.
       const double area = integrates_on_domains(cb.formulation) && cb.measure.used()
                               ? cb.measure[c]
                               : 0.5 * ((X[1] - X[0]).x() * (X[2] - X[0]).y() - (X[2] - X[0]).x() * (X[1] - X[0]).y());
-      const double rho = materials[std::size_t(body)].density;
       auto add_point = [&](const double* l, double weight, const double* N, int n_nodes) {
         const Vec2 Xq = l[0] * X[0] + l[1] * X[1] + l[2] * X[2];
         for (int d = 0; d < 2; ++d) {

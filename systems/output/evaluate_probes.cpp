@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 
+#include "engine/mesh/quad9_shape.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 
 namespace loom {
@@ -32,6 +34,28 @@ double cell_pressure(const BodyMaterial& material, const QuadPoints<2>& quad, In
   return p / quad.per_cell;
 }
 
+namespace {
+
+// The reference coordinates of `at` in quad9 cell c, if it lies in the cell (reference configuration).
+std::optional<Vec2> quad9_sample(const Nodes<2>& nodes, const Cells& cb, Index c, const Vec2& at) {
+  Quad9Coordinates X;
+  for (int a = 0; a < 9; ++a) X.row(a) = nodes.X[cb.node(c, a)].transpose();
+  Vec2 xi;
+  if (!quad9_inverse_map(X, at, xi) || xi.cwiseAbs().maxCoeff() > 1.0 + 1e-9) return std::nullopt;
+  return xi;
+}
+
+// quad9: the stress at reference coordinates l = (xi, eta) from its 3 x 3 Gauss values, by the biquadratic
+// Lagrange interpolation through the Gauss points (exact for a biquadratic stress field): the 1D quadratic
+// through -g, 0, g evaluated at xi is quadratic_lagrange(xi / g).
+double gauss_lagrange_weight(const std::array<double, 3>& l, int q) {
+  const double g = std::sqrt(0.6);
+  const Eigen::Vector3d Lx = quadratic_lagrange(l[0] / g), Ly = quadratic_lagrange(l[1] / g);
+  return Lx[q % 3] * Ly[q / 3];  // quad9_gauss: point q = 3 j + i at (g_i, g_j)
+}
+
+}  // namespace
+
 ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Cells>& cells,
                       const std::vector<Index>& node_body) {
   ProbePlan plan;
@@ -57,8 +81,9 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         const Cells& cb = cells[b];
         for (Index c = 0; c < cb.size(); ++c) {
           if (cb.body[c] != p.body) continue;
-          for (int s = 0; s < 3; ++s) {
-            const Index x = cb.node(c, s), y = cb.node(c, (s + 1) % 3);
+          const int corners = corners_of_stride(cb.stride);
+          for (int s = 0; s < corners; ++s) {
+            const Index x = cb.node(c, s), y = cb.node(c, (s + 1) % corners);
             const std::uint64_t key = (std::uint64_t(std::min(x, y)) << 32) | std::uint64_t(std::max(x, y));
             auto [it, inserted] = first.emplace(key, c);
             if (!inserted) pairs.push_back({Index(b), it->second, c});
@@ -72,6 +97,10 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         const Cells& cb = cells[b];
         for (Index c = 0; c < cb.size(); ++c) {
           if (p.body != kNoIndex && cb.body[c] != p.body) continue;
+          if (cb.type == CellType::quad9) {
+            if (const auto xi = quad9_sample(nodes, cb, c, p.at)) samples.push_back({Index(b), c, {xi->x(), xi->y(), 0.0}});
+            continue;
+          }
           const Vec2 &a = nodes.X[cb.node(c, 0)], &e1 = nodes.X[cb.node(c, 1)], &e2 = nodes.X[cb.node(c, 2)];
           if (!(signed_area(a, e1, e2) > 0.0)) continue;
           const auto l = barycentric(a, e1, e2, p.at);
@@ -146,7 +175,7 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
           for (int i = 0; i < q.per_cell; ++i) {
             Mat3 sigma;
             if (!point_stress(m, q, s.cell * q.per_cell + i, sigma)) sigma.setConstant(kNaN);
-            const double w = q.per_cell == 1 ? 1.0 : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
+            const double w = q.per_cell == 1 ? 1.0 : q.per_cell == 9 ? gauss_lagrange_weight(s.l, i) : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
             mean += w * sigma / double(plan.samples[k].size());
           }
         }

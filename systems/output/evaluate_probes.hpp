@@ -13,7 +13,8 @@
 //                 point, the quadrature points' stresses (from F_n) fitted linearly -- the 3-point rule at
 //                 barycentric l_q = (2/3, 1/6, 1/6) gives sigma(l) = sum_q sigma_q (2 l_q - 1/3) -- or the
 //                 one point's value, evaluated at the point and averaged over those cells (at a node: the
-//                 usual nodal average of extrapolated element stresses).
+//                 usual nodal average of extrapolated element stresses); quad9: the biquadratic interpolation
+//                 of its 3 x 3 Gauss values.
 #pragma once
 
 #include <array>
@@ -32,7 +33,7 @@ namespace loom {
 
 struct StressSample {
   Index block = 0, cell = 0;
-  std::array<double, 3> l{};  // barycentric coordinates of the point in the cell's corner triangle
+  std::array<double, 3> l{};  // barycentric coordinates of the point in the cell's corner triangle; quad9: (xi, eta, 0)
 };
 
 struct ProbePlan {

@@ -17,7 +17,12 @@ void compute_lumped_mass(const std::vector<Cells>& cells, const std::vector<Quad
       else
         for (int q = 0; q < qb.per_cell; ++q) volume0 += qb.weight_n[c * qb.per_cell + q] / qb.F_n[c * qb.per_cell + q].determinant();
       const double rho = materials[std::size_t(cb.body[c])].density;
-      if (cb.type == CellType::tri6) {
+      if (cb.type == CellType::quad9) {
+        double dV0[9];
+        for (int q = 0; q < 9; ++q) dV0[q] = qb.weight_n[c * 9 + q] / qb.F_n[c * 9 + q].determinant();
+        const auto m = quad9_lumped_mass(dV0);
+        for (int a = 0; a < 9; ++a) nodes.lumped_mass[cb.node(c, a)] += rho * m[a];
+      } else if (cb.type == CellType::tri6) {
         const auto m = tri6_lumped_mass(volume0);
         for (int a = 0; a < 6; ++a) nodes.lumped_mass[cb.node(c, a)] += rho * m[a];
       } else {

@@ -9,11 +9,16 @@
 #include <vtkPointData.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkCell.h>
+#include <vtkCellType.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <limits>
 
 #include "engine/methods/build_mesh.hpp"
@@ -356,6 +361,45 @@ TEST(OutputReadBack, SmoothedElementsWriteTheNodalPressureAndJ) {
   EXPECT_NEAR(q_mean, -p_mean, 0.2 * std::abs(p_mean));
   EXPECT_GT(J_min, 0.0);
   EXPECT_LT(J_min, 1.0);  // compressed somewhere (rho g H / K = 5 % at the base)
+}
+
+// quad9 bodies are written as VTK_BIQUADRATIC_QUAD with the nine nodes in VTK's order (corners, mid-sides, centre):
+// ParaView draws the curved cells from them. On Cook's membrane, n x n cells have (2n + 1)^2 nodes, and the written
+// displacement at C is the probe's.
+TEST(OutputReadBack, Quad9CellsAreBiquadraticQuadsWithTheirNineNodes) {
+  TempDir out("readback_quad9");
+  std::ifstream in(kCook);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string scene = std::regex_replace(text.str(), std::regex(R"(, pattern = "[a-z]+")"), "");
+  ASSERT_NE(scene, text.str());
+  std::ofstream(out.file("quad9.toml")) << scene;
+  const Command c = run_loom({"run", out.file("quad9.toml"), "--quiet", "--out", out.path(), "--set", "body[0].element=quad9", "--set",
+                              "body[0].mesh.divisions=[4,4]"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const VtuFrame f = read_vtu(out.file("cooks-membrane-linear_000001.vtu"));
+  ASSERT_EQ(f.grid->GetNumberOfCells(), 16);
+  EXPECT_EQ(f.grid->GetNumberOfPoints(), 81);
+  for (vtkIdType k = 0; k < f.grid->GetNumberOfCells(); ++k) {
+    ASSERT_EQ(f.grid->GetCellType(k), VTK_BIQUADRATIC_QUAD);
+    // The centre node lies inside the quadrilateral of the four corners (a mis-ordered cell would put a
+    // mid-side or a corner there).
+    vtkCell* cell = f.grid->GetCell(k);
+    double centre[3], mean[3] = {0, 0, 0};
+    f.grid->GetPoint(cell->GetPointId(8), centre);
+    for (int a = 0; a < 4; ++a) {
+      double x[3];
+      f.grid->GetPoint(cell->GetPointId(a), x);
+      for (int d = 0; d < 2; ++d) mean[d] += x[d] / 4;
+    }
+    EXPECT_LT(std::hypot(centre[0] - mean[0], centre[1] - mean[1]), 0.5) << "cell " << k;
+  }
+  const auto probes = read_probes(out.file("probes.csv"));
+  vtkDataArray* u = f.point("displacement");
+  ASSERT_NE(u, nullptr);
+  double uy_max = 0.0;
+  for (vtkIdType i = 0; i < u->GetNumberOfTuples(); ++i) uy_max = std::max(uy_max, u->GetComponent(i, 1));
+  EXPECT_NEAR(uy_max, probes.column("uy_C").back(), 1e-9 * uy_max);  // C is the largest deflection
 }
 
 }  // namespace

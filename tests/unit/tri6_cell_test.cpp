@@ -1,4 +1,4 @@
-// Quadratic triangle (systems/assemble/elements/tri6.hpp, tri6_cell.hpp; seed 000 §4.1): shape functions
+// Quadratic triangle (systems/assemble/elements/tri6.hpp, isoparametric_cell.hpp; seed 000 §4.1): shape functions
 // are a partition of unity and interpolate quadratics exactly; the element tangent equals the central
 // difference of the residual with a non-trivial history; the mass helpers integrate exactly.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 
 #include "systems/assemble/elements/element_mass.hpp"
 #include "systems/assemble/elements/tri3.hpp"
-#include "systems/assemble/elements/tri6_cell.hpp"
+#include "systems/assemble/elements/isoparametric_cell.hpp"
 #include "systems/assemble/materials/material.hpp"
 
 namespace loom {

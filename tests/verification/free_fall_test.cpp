@@ -29,22 +29,23 @@ namespace {
 constexpr double kGx = 3.0, kGy = -9.81, kDt = 0.05;
 constexpr int kSteps = 20;
 
-std::string scene_text(const std::string& mass) {
+std::string scene_text(const std::string& mass, const std::string& element = "p1") {
+  const std::string pattern = element == "quad9" ? "" : "pattern = \"alternating\", ";
   return "[scene]\nname = \"free-fall\"\n"
          "[time]\nintegrator = \"euler_backward\"\ndt = 0.05\nsteps = 20\nmass = \"" + mass + "\"\n"
          "[solver]\nresidual_relative = 1e-12\n"
          "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 100.0\nnu = 0.3\ndensity = 2.0\n"
-         "[[body]]\nname = \"block\"\nmaterial = \"m\"\n"
-         "mesh = { generator = \"rectangle\", origin = [1.0, 2.0], size = [1.0, 0.5], divisions = [6, 3], pattern = \"alternating\", distortion = 0.25 }\n"
+         "[[body]]\nname = \"block\"\nmaterial = \"m\"\nelement = \"" + element + "\"\n"
+         "mesh = { generator = \"rectangle\", origin = [1.0, 2.0], size = [1.0, 0.5], divisions = [6, 3], " + pattern + "distortion = 0.25 }\n"
          "[body_force]\nx = 3.0\ny = -9.81\n"
          "[[probe]]\nname = \"ux\"\nkind = \"point\"\nat = [1.0, 2.0]\ncomponent = \"x\"\n"
          "[[probe]]\nname = \"uy\"\nkind = \"point\"\nat = [2.0, 2.5]\ncomponent = \"y\"\n"
          "[output]\nevery = 0\n";
 }
 
-void check_free_fall(const std::string& mass) {
-  SCOPED_TRACE(mass + " mass");
-  const SceneSpec scene = testing::scene_from_text(scene_text(mass));
+void check_free_fall(const std::string& mass, const std::string& element = "p1") {
+  SCOPED_TRACE(mass + " mass, " + element);
+  const SceneSpec scene = testing::scene_from_text(scene_text(mass, element));
   testing::TempDir dir("free_fall_" + mass);
   auto run = testing::make_fem_run(scene, dir.path());
   const RunSummary summary = run->run();
@@ -71,13 +72,19 @@ void check_free_fall(const std::string& mass) {
   }
   EXPECT_LE(worst_u, 1e-10);
   EXPECT_LE(worst_v, 1e-10);
-  std::printf("[free fall] %-10s mass: probes worst rel err %.1e; all nodes at step %d: u %.1e, v %.1e; Newton %lld\n",
-              mass.c_str(), worst, kSteps, worst_u, worst_v, summary.newton_iterations);
+  std::printf("[free fall] %-5s %-10s mass: probes worst rel err %.1e; all nodes at step %d: u %.1e, v %.1e; Newton %lld\n",
+              element.c_str(), mass.c_str(), worst, kSteps, worst_u, worst_v, summary.newton_iterations);
 }
 
 TEST(EulerBackwardFreeFall, FollowsTheDiscreteExactSolutionWithLumpedMass) { check_free_fall("lumped"); }
 
 TEST(EulerBackwardFreeFall, FollowsTheDiscreteExactSolutionWithConsistentMass) { check_free_fall("consistent"); }
+
+// quad9: the row sums of its consistent mass and its body force are the same Gauss sums of N^A (element_mass.hpp).
+TEST(EulerBackwardFreeFall, Quad9FollowsTheDiscreteExactSolutionWithBothMasses) {
+  check_free_fall("lumped", "quad9");
+  check_free_fall("consistent", "quad9");
+}
 
 }  // namespace
 }  // namespace loom
@@ -100,7 +107,7 @@ void check_bossak_free_fall(const std::string& integrator, double alpha, const s
                                                  (integrator == "bossak" ? "\nalpha = " + std::to_string(alpha) : std::string()));
   if (body == "es_up") {
     replace("model = \"neo_hooke\"", "model = \"hencky_perzyna\"\ntau0 = 1.0\nviscosity = 0.5");
-    replace("material = \"m\"\n", "material = \"m\"\nelement = \"es_up\"\nalpha_stab = 0.5\n");
+    replace("element = \"p1\"\n", "element = \"es_up\"\nalpha_stab = 0.5\n");
   }
   const SceneSpec scene = testing::scene_from_text(text);
   testing::TempDir dir("free_fall_bossak");

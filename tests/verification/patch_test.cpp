@@ -5,6 +5,8 @@
 // zero internal force at every interior node) for any material and any mesh, and the solution is unique.
 //  - tri6: the three-point rule integrates grad N^A (linear on a straight cell) exactly, so the interior
 //    residuals P int grad N^A dV vanish exactly as for p1; mid-nodes are interior or outline nodes like any.
+//  - quad9 (distorted convex quadrilaterals, the quad9 map bilinear): grad N^A det J is a polynomial of degree
+//    at most 3 per direction, which the 3 x 3 Gauss rule integrates exactly; affine fields are in the span.
 //  - p1p1_uphi: phi = J (uniform) makes F~ = F, and the dilatation residual -int N^A J + K_phiphi^AB phi^B
 //    vanishes: sum_B M^AB = m^A and, the P1 m^B being all equal to A/3, the projection term
 //    sum_B (M^AB - m^B/3) J = (m^A - A/3) J = 0. So the nodal phi must come out equal to det F.
@@ -77,8 +79,9 @@ std::string scene_text(const PatchCase& c) {
   s += "[[material]]\nname = \"m\"\nmodel = \"" + c.model + "\"\nE = 10.0\nnu = 0.3\n";
   s += "[[body]]\nname = \"patch\"\nmaterial = \"m\"\nelement = \"" + c.element + "\"\n";
   if (c.element == "es_up" || c.element == "fem_up") s += "alpha_stab = 0.5\n";
-  s += "mesh = { generator = \"rectangle\", origin = [0.5, -0.25], size = [2.0, 1.0], divisions = [6, 4], pattern = \"" +
-       c.pattern + "\", distortion = 0.25, seed = 11 }\n";
+  const std::string pattern = c.element == "quad9" ? "" : "pattern = \"" + c.pattern + "\", ";
+  s += "mesh = { generator = \"rectangle\", origin = [0.5, -0.25], size = [2.0, 1.0], divisions = [6, 4], " + pattern +
+       "distortion = 0.25, seed = 11 }\n";
   s += "[[boundary]]\nname = \"left\"\n" + box(kX0, kY0, kX0, y1) + disp;
   s += "[[boundary]]\nname = \"right\"\n" + box(x1, kY0, x1, y1) + disp;
   s += "[[boundary]]\nname = \"bottom\"\n" + box(kX0, kY0, x1, kY0) + disp;
@@ -151,7 +154,7 @@ void run_patch(const PatchCase& c) {
   const Nodes<2>& nodes = run->nodes();
   // tri6 appends one mid-node per edge after the corner nodes of the generated mesh.
   const std::size_t n_corners = regular.X.size();
-  if (c.element == "tri6") ASSERT_GT(std::size_t(nodes.size()), n_corners);
+  if (c.element == "tri6" || c.element == "quad9") ASSERT_GT(std::size_t(nodes.size()), n_corners);
   else ASSERT_EQ(std::size_t(nodes.size()), n_corners);
   int interior = 0;
   double max_offset = 0.0, max_error = 0.0;
@@ -223,6 +226,7 @@ TEST(PatchTest, LinearElasticReproducesAnAffineSmallDisplacement) {
   F << 1.0 + 2e-3, 1.5e-3, -0.5e-3, 1.0 - 1e-3;
   for (const char* element : {"p1", "tri6"})
     for (const char* pattern : {"right", "alternating", "shifted"}) run_patch({"linear_elastic", element, F, 1, pattern});
+  run_patch({"linear_elastic", "quad9", F, 1, "quadrilaterals"});
 }
 
 TEST(PatchTest, NeoHookeReproducesAFiniteAffineDeformationOverSeveralSteps) {
@@ -232,6 +236,7 @@ TEST(PatchTest, NeoHookeReproducesAFiniteAffineDeformationOverSeveralSteps) {
   F << 1.3, 0.2, -0.1, 0.9;
   for (const char* element : {"p1", "tri6", "p1p1_uphi"})
     for (const char* pattern : {"right", "alternating", "shifted"}) run_patch({"neo_hooke", element, F, 4, pattern});
+  run_patch({"neo_hooke", "quad9", F, 4, "quadrilaterals"});
 }
 
 }  // namespace

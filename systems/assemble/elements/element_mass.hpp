@@ -3,10 +3,14 @@
 //  tri6: consistent M^AB = int N^A N^B with the degree-4 six-point rule (exact on straight cells);
 //        lumped by HRZ (diagonal of the consistent matrix scaled to the total mass): the row sum would give
 //        zero corner masses.
+//  quad9: consistent M^AB = sum_q N^A N^B dV_0q at the 3 x 3 Gauss points (exact on parallelograms);
+//        lumped by the row sum m^A = int N^A dV_0, positive for quad9 (on a rectangle the tensor product of
+//        Simpson's 1/6, 2/3, 1/6: corners 1/36, mid-sides 1/9, centre 4/9 of the area).
 #pragma once
 
 #include <Eigen/Core>
 
+#include "engine/mesh/quad9_shape.hpp"
 #include "systems/assemble/elements/tri6.hpp"
 
 namespace loom {
@@ -31,6 +35,22 @@ inline Eigen::Matrix<double, 6, 6> tri6_consistent_mass(double area0) {
 inline Eigen::Matrix<double, 6, 1> tri6_lumped_mass(double area0) {
   const Eigen::Matrix<double, 6, 6> M = tri6_consistent_mass(area0);
   return M.diagonal() * (area0 / M.trace());
+}
+
+// dV0[q]: the reference volume of Gauss point q (quad9_gauss order).
+inline Eigen::Matrix<double, 9, 9> quad9_consistent_mass(const double* dV0) {
+  Eigen::Matrix<double, 9, 9> M = Eigen::Matrix<double, 9, 9>::Zero();
+  for (int q = 0; q < 9; ++q) {
+    const Quad9Values N = quad9_shape(quad9_gauss().xi[std::size_t(q)]);
+    M += dV0[q] * N * N.transpose();
+  }
+  return M;
+}
+
+inline Quad9Values quad9_lumped_mass(const double* dV0) {
+  Quad9Values m = Quad9Values::Zero();
+  for (int q = 0; q < 9; ++q) m += dV0[q] * quad9_shape(quad9_gauss().xi[std::size_t(q)]);
+  return m;
 }
 
 }  // namespace loom
