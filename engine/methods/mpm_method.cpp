@@ -146,16 +146,21 @@ void MpmRun::newton_node() {
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
-  // The likely cause of a failure or of a singular tangent on bilinear cells: too few particles in some.
+  // The likely cause of a failure or of a singular tangent on quadrilateral cells: too few particles in some. A
+  // quad4 (quad9) cell integrated at fewer than 4 (9) points has zero-energy modes; on quad9 grids the soft
+  // stiffness of edge cells is what removes them (seed 004 eq 26).
   std::string hint;
   const bool suspect = !report.converged || solver_.min_rcond() < LinearSolve::kNearlySingular;
-  if (suspect && m_.grid.stride == 4) {
+  const int nen = m_.grid.stride;
+  if (suspect && (nen == 4 || nen == 9)) {
     Index sparse = 0;
-    for (Index c : m_.activity.active_cells) sparse += m_.particle_loc.count_in(c) < 4;
+    for (Index c : m_.activity.active_cells) sparse += m_.particle_loc.count_in(c) < nen;
     if (sparse > 0) {
       std::ostringstream os;
-      os << sparse << " of the " << m_.activity.active_cells.size() << " active quad4 cells hold fewer than 4 particles "
-         << "(a bilinear cell with fewer has hourglass modes: raise body[0].particles_per_cell, refine the body mesh or coarsen the grid)";
+      os << sparse << " of the " << m_.activity.active_cells.size() << " active " << cell_type_name(m_.grid.type) << " cells hold fewer than "
+         << nen << " particles (a cell integrated at fewer points has zero-energy modes: "
+         << (nen == 4 ? "raise body[0].particles_per_cell, refine the body mesh or coarsen the grid)"
+                      : "raise the particle density, coarsen the grid, or give mpm.soft_stiffness larger c1, c2)");
       hint = os.str();
     }
   }
