@@ -72,7 +72,9 @@ void FemRun::resolve_probe_groups() {
 void FemRun::check_model() const {
   std::vector<const Cells*> blocks;
   for (const auto& c : m_.cells) blocks.push_back(&c);
-  check_rigid_motions_held(scene_, m_.nodes, blocks, m_.bc, m_.node_body);
+  // Walls hold what rests on them through their penalty: a static body on a wall is not free (one that does
+  // not touch any wall is, and Newton then names the singular tangent).
+  if (m_.walls.empty()) check_rigid_motions_held(scene_, m_.nodes, blocks, m_.bc, m_.node_body);
   std::vector<Vec2> X(std::size_t(m_.nodes.size()));
   for (Index i = 0; i < m_.nodes.size(); ++i) X[std::size_t(i)] = m_.nodes.X[i];
   std::vector<Index> corners, corner_body;
@@ -113,8 +115,17 @@ void FemRun::build_graph() {
     });
   }
   g.add_system("apply_boundary_conditions", &apply_boundary_conditions, m_.nodes, m_.cells, m_.materials, m_.bc);
+  if (!m_.walls.empty()) {
+    g.name_store(&m_.walls, "walls");
+    g.name_store(&m_.node_body, "node_body");
+    g.add_system("measure_contact_areas", &measure_contact_areas, m_.cells, m_.nodes);
+  }
   g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.edges, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
+  if (!m_.walls.empty()) {
+    const auto commit_walls = g.add_system("commit_wall_contact", &commit_wall_contact, m_.walls, m_.node_body, m_.nodes);
+    g.run_if(commit_walls, &status_, [this] { return status_.converged; });
+  }
   const auto commit = g.add_system("commit", &commit_step, m_.cells, m_.nodes, m_.quad);
   g.run_if(commit, &status_, [this] { return status_.converged; });
   if (!m_.edges.empty()) {
@@ -141,6 +152,7 @@ void FemRun::remesh_node() {
 void FemRun::newton_node() {
   reset_iterate(m_.nodes);
   FemNewtonProblem problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_, &m_.edges);
+  problem.set_walls(&m_.walls, &m_.node_body);
   NewtonSettings settings = newton_settings_of(scene_.solver);
   if (options_.verbose && options_.log) {
     *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
@@ -165,8 +177,9 @@ void FemRun::newton_node() {
 }
 
 void FemRun::probes_node() {
+  const std::vector<WallResult> walls = m_.walls.empty() ? std::vector<WallResult>{} : wall_results(m_.walls, m_.node_body, m_.nodes);
   evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations,
-                  last_remesh_.stats(), probe_values_);
+                  last_remesh_.stats(), walls, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 
@@ -253,6 +266,10 @@ void FemRun::write_initial_state() {
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
   apply_boundary_conditions(ctx_, m_.nodes, m_.cells, m_.materials, m_.bc);
   assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
+  if (!m_.walls.empty()) {
+    measure_contact_areas(ctx_, m_.cells, m_.nodes);
+    add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
+  }
   if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium) set_equilibrium_acceleration();
   status_ = StepStatus{};
   status_.converged = true;

@@ -7,6 +7,7 @@
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/build_domains.hpp"
+#include "engine/methods/build_walls.hpp"
 #include "engine/methods/memory_estimate.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/update/lumped_mass.hpp"
@@ -49,6 +50,8 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   nodes.p_n.use(pressure);
   for (const auto& b : scene.bodies) j_projection.push_back(b.j_projection);
   nodes.J_node.use(scene.scene.method == Method::es_pfem || std::count(j_projection.begin(), j_projection.end(), 1) > 0);
+  nodes.in_contact.use(!scene.walls.empty());
+  for (auto* c : {&nodes.contact_area, &nodes.contact_point}) c->use(!scene.walls.empty());
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.
@@ -68,6 +71,7 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
                                                 MaterialModel::linear_elastic;
   set_reference_areas(nodes, cells);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
+  walls = build_walls(scene, nodes, cells, node_body);
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
   const int per_node = mixed ? 3 : 2;  // u_x, u_y (, phi)

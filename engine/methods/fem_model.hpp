@@ -16,6 +16,7 @@
 #include "engine/store/nodes.hpp"
 #include "engine/store/points.hpp"
 #include "engine/store/quad_points.hpp"
+#include "engine/store/walls.hpp"
 #include "systems/assemble/materials/material.hpp"
 
 namespace loom {
@@ -33,6 +34,7 @@ struct FemModel {
   std::vector<char> j_projection;  // per body: body[].j_projection
   std::vector<BodyMaterial> materials;
   BoundaryConditions<2> bc;
+  Walls walls;  // rigid planes with their penalties ([[wall]]); the contact state is in nodes
   LinearSystem system;
   std::vector<Index> node_body;  // owning body of each node
   BodyRegions regions;           // per body: the physical groups of its mesh file (global corner nodes)

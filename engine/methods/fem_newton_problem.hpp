@@ -14,6 +14,7 @@
 #include "engine/store/nodes.hpp"
 #include "engine/store/quad_points.hpp"
 #include "systems/assemble/assemble_system.hpp"
+#include "systems/assemble/wall_contact.hpp"
 #include "systems/solve/solve_linear_step.hpp"
 #include "systems/update/update_iterate.hpp"
 
@@ -38,10 +39,15 @@ class FemNewtonProblem final : public NonlinearProblem {
       : ctx_(ctx), materials_(materials), cells_(cells), bc_(bc), nodes_(nodes), quad_(quad), system_(system),
         solver_(solver), timers_(timers), domains_(domains) {}
 
+  // Rigid walls act on the nodes of the given bodies (systems/assemble/wall_contact.hpp).
+  void set_walls(const Walls* walls, const std::vector<Index>* node_body) { walls_ = walls, node_body_ = node_body; }
+
   bool assemble(bool with_tangent) override {
     const auto mode = with_tangent ? AssemblyMode::residual_and_tangent : AssemblyMode::residual;
     fresh_tangent_ = fresh_tangent_ || with_tangent;
-    return assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
+    const bool ok = assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
+    if (walls_ && !walls_->empty()) add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
+    return ok;
   }
   double residual_norm() const override { return system_.residual.norm(); }
   bool solve() override {
@@ -100,6 +106,8 @@ class FemNewtonProblem final : public NonlinearProblem {
   }
 
   std::vector<Edges<2>>* domains_;
+  const Walls* walls_ = nullptr;
+  const std::vector<Index>* node_body_ = nullptr;
   bool fresh_tangent_ = false;  // a tangent was assembled since the last factorisation
 };
 

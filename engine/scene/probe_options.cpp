@@ -15,7 +15,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
                                   {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
                                   {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
-                                  {"stress", ProbeKind::stress}});
+                                  {"stress", ProbeKind::stress}, {"wall_force", ProbeKind::wall_force}, {"penetration", ProbeKind::penetration}});
   p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
   p.max = t.string("bound") == "max";
   const std::string quantity = t.string("quantity");
@@ -27,9 +27,13 @@ void read_probe(SceneSpec& s, const TableReader& t) {
                                                {"zz", StressComponent::zz}, {"von_mises", StressComponent::von_mises},
                                                {"pressure", StressComponent::pressure}});
   const bool vector_component = component == "x" || component == "y";
-  if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component)
-    t.error("component", p.kind == ProbeKind::stress ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
-                                                    : "kind = \"" + kind + "\" reads component x or y");
+  if (p.kind == ProbeKind::wall_force && component == "normal") {
+    p.component = 2;
+  } else if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component) {
+    t.error("component", p.kind == ProbeKind::stress       ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
+                         : p.kind == ProbeKind::wall_force ? "a wall_force probe reads component x, y or normal"
+                                                           : "kind = \"" + kind + "\" reads component x or y");
+  }
   auto needs = [&](const char* key) {
     if (t.present() && t.has("kind") && !t.has(key)) t.error("", std::string("missing key ") + key + " (needed by kind = \"" + kind + "\")");
   };
@@ -68,6 +72,22 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       }
       break;
     }
+    case ProbeKind::wall_force:
+    case ProbeKind::penetration: {
+      if (p.kind == ProbeKind::wall_force) needs("wall"), needs("component");
+      else unused("component");
+      unused("boundary"), unused("at"), unused("body"), unused("group");
+      if (t.has("wall")) {
+        const std::string wall = t.string("wall");
+        p.wall = find_by_name(s.walls, wall);
+        if (p.wall == kNoIndex) t.error("wall", "no [[wall]] named \"" + wall + "\" (known: " + names_of(s.walls) + ")");
+        else if (p.component == 2 && s.walls[std::size_t(p.wall)].planes.size() != 1)
+          t.error("component", "wall \"" + wall + "\" is a box of four planes: read component x or y");
+      } else if (s.walls.empty()) {
+        t.error("kind", "kind = \"" + kind + "\" measures [[wall]]s and the scene has none");
+      }
+      break;
+    }
     case ProbeKind::newton:
     case ProbeKind::energy:
       unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
@@ -97,6 +117,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   if (p.kind != ProbeKind::extent) unused("bound");
   if (p.kind != ProbeKind::remesh) unused("quantity");
   if (p.kind != ProbeKind::energy) unused("energy");
+  if (p.kind != ProbeKind::wall_force && p.kind != ProbeKind::penetration) unused("wall");
   s.probes.push_back(p);
 }
 

@@ -19,6 +19,7 @@
 #include "engine/scene/pfem_options.hpp"
 #include "engine/scene/smoothed_options.hpp"
 #include "engine/scene/probe_options.hpp"
+#include "engine/scene/wall_options.hpp"
 #include "engine/scene/loader_support.hpp"
 #include "engine/scene/schema_validator.hpp"
 #include "engine/scene/table_reader.hpp"
@@ -63,6 +64,7 @@ class Loader {
     for (const auto& m : root_.array("material")) read_material(s, m);
     for (const auto& b : root_.array("body")) read_body(s, b);
     for (const auto& b : root_.array("boundary")) read_boundary(s, b);
+    for (const auto& w : root_.array("wall")) read_wall(s, w);
     s.body_force = read_vector(root_.table("body_force"), diag_);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
     read_pfem_options(s, root_);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -29,7 +30,7 @@ enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
 enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file };
-enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
 enum class RemeshQuantity { area_change, changed, rejected, isolated };
 
@@ -158,6 +159,20 @@ struct BoundarySpec {
   bool outside = false;  // mpm particle_newmark: the region's grid nodes lower the soft-stiffness flags
 };
 
+// Rigid walls (seed 001 §1.8: ground and walls as planes with a normal penalty): a line through `point` whose
+// `normal` points into the side the material may occupy, or a box whose four sides hold the material inside.
+// A node of the named body (every body when kNoIndex) behind a plane, g = (x - point) . normal < 0, gets the
+// penalty force -k_N A g normal (A: its share of the boundary length); with stick, also a tangential penalty
+// that holds it at its first-contact point.
+struct WallSpec {
+  std::string name;
+  std::vector<std::pair<Vec2, Vec2>> planes;  // (point, unit normal)
+  Index body = kNoIndex;
+  double penalty = 0.0;  // k_N, force per unit length per unit penetration; 0: chosen from the material and mesh
+  bool stick = false;
+  SourceRef where;
+};
+
 // Method mpm: the time scheme and seed 004's edge terms.
 //  grid_newmark:     seed 003 (Moreno et al.): particles projected to the grid, lumped grid mass, Newmark on the grid;
 //  particle_newmark: seed 004 (Aulisa & Capodaglio): particles are the quadrature points and carry the Newmark
@@ -173,7 +188,8 @@ struct ProbeSpec {
   std::string name;
   ProbeKind kind = ProbeKind::newton;
   Index boundary = kNoIndex;  // reaction
-  int component = 0;          // 0: x, 1: y
+  Index wall = kNoIndex;      // wall_force; penetration (kNoIndex: every wall)
+  int component = 0;          // 0: x, 1: y (wall_force: 2, along the wall's normal)
   StressComponent stress = StressComponent::xx;  // stress
   Vec2 at = Vec2::Zero();     // point, stress
   std::string group;          // point, stress: a physical point of the mesh file instead of `at` (resolved into `at`)
@@ -212,6 +228,7 @@ struct SceneSpec {
   GridSpec grid;
   MpmSpec mpm;
   std::vector<BoundarySpec> boundaries;
+  std::vector<WallSpec> walls;
   VectorExpression body_force;  // global, per unit mass
   std::vector<ProbeSpec> probes;
   PfemSpec pfem;

@@ -238,6 +238,28 @@ std::vector<KeySpec> build_schema() {
                   "marks every outer boundary of the disk grids this way, not the beam's clamped wall).").by_default("false"));
   s.push_back(key("boundary[].pressure", K::expression, "Method mpm, p1p1_up: prescribed grid pressure p (sigma = sigma_dev + p I) at the region's grid nodes, "
                   "e.g. to fix the pressure level of an enclosed incompressible body." + expr));
+  // [[wall]]
+  s.push_back(key("wall", K::table_array,
+                  "Rigid walls (methods fem, pfem, es_pfem; [Reinold 2021] §4.4: ground and walls as planes with a penalty): every node of "
+                  "the body that gets behind a wall, g = (x - point) . normal < 0, is pushed back by the force -k_N A g normal, A its "
+                  "share of the body's boundary that faces the wall (half of each boundary edge, 1/6 and 2/3 on quadratic edges, "
+                  "projected on the wall), with the tangent in the Newton matrix. The nodes are those of the current mesh: PFEM particles that reach the wall feel it."));
+  s.push_back(key("wall[].name", K::string, "Name wall_force and penetration probes refer to.").require());
+  s.push_back(key("wall[].point", K::vec2, "A point of the wall's line."));
+  s.push_back(key("wall[].normal", K::vec2, "Normal of the wall, pointing to the side the material occupies (need not be a unit vector)."));
+  s.push_back(key("wall[].box", K::box, "Instead of point and normal: [[xmin, ymin], [xmax, ymax]], four walls that keep the material inside."));
+  s.push_back(key("wall[].body", K::string, "The body the wall acts on (default: every body)."));
+  s.push_back(key("wall[].contact", K::choice, "Contact law: penalty.").one_of({"penalty"}).by_default("penalty"));
+  s.push_back(key("wall[].penalty", K::real,
+                  "k_N, force per unit boundary length per unit penetration (stress / length). 0 (default): 100 E / h with E the "
+                  "largest Young's modulus of the bodies it acts on and h their mean boundary edge length at the start, so that the "
+                  "penetration stays below 1 % of h while the contact pressure stays below E.")
+                  .by_default("0").at_least(0));
+  s.push_back(key("wall[].slip", K::choice,
+                  "free: frictionless (a symmetry plane); stick: a node in contact is also held at its first-contact point (the projection "
+                  "on the wall of where it was at the start of the step it first touched) by a tangential penalty k_N; it is let go "
+                  "when it leaves the wall.")
+                  .one_of({"free", "stick"}).by_default("free"));
   // [body_force]
   s.push_back(key("body_force", K::table, "Body force per unit mass on every body (gravity: y = -9.81); needs density > 0."));
   s.push_back(key("body_force.x", K::expression, "x component." + expr).by_default("0"));
@@ -256,11 +278,15 @@ std::vector<KeySpec> build_schema() {
                   "extrapolated linearly from the quadrature points of the cell that holds the point and averaged over the cells "
                   "that share it (a node). "
                   "Method mpm: point probes follow a tracer point that starts at `at` and moves with the grid (the material "
-                  "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides.")
-                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "stress"}).require());
+                  "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides. "
+                  "wall_force: a `component` (x, y, or normal: along the wall's normal, a single plane) of the force the `wall` exerts "
+                  "on the bodies; penetration: the largest distance of a node behind the `wall` (or behind any wall), >= 0.")
+                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "stress", "wall_force",
+                           "penetration"}).require());
+  s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y), or of a stress probe.")
-                  .one_of({"x", "y", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y), of a wall_force probe (x, y, normal), or of a stress probe.")
+                  .one_of({"x", "y", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));

@@ -118,7 +118,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
 void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
                      const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
-                     const RemeshStats& remesh, std::vector<double>& values) {
+                     const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
     const ProbeSpec& p = plan.probes[k];
@@ -164,6 +164,18 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
           case RemeshQuantity::isolated: values[k] = remesh.isolated; break;
         }
         break;
+      case ProbeKind::wall_force: {
+        const WallResult& w = walls.at(std::size_t(p.wall));
+        values[k] = p.component < 2 ? w.force[p.component] : w.force.dot(w.normal);
+        break;
+      }
+      case ProbeKind::penetration: {
+        double worst = 0.0;
+        for (std::size_t w = 0; w < walls.size(); ++w)
+          if (p.wall == kNoIndex || Index(w) == p.wall) worst = std::max(worst, walls[w].penetration);
+        values[k] = worst;
+        break;
+      }
       case ProbeKind::energy:  // method mpm only (the loader rejects it for fem)
         values[k] = kNaN;
         break;

@@ -14,7 +14,10 @@
 //                 barycentric l_q = (2/3, 1/6, 1/6) gives sigma(l) = sum_q sigma_q (2 l_q - 1/3) -- or the
 //                 one point's value, evaluated at the point and averaged over those cells (at a node: the
 //                 usual nodal average of extrapolated element stresses); quad9: the biquadratic interpolation
-//                 of its 3 x 3 Gauss values.
+//                 of its 3 x 3 Gauss values;
+//  wall_force:    a component (x, y, along the normal) of the force a wall exerts on the bodies (`walls`, from
+//                 wall_results at the converged state);
+//  penetration:   the largest distance of a node behind the wall (or behind any wall).
 #pragma once
 
 #include <array>
@@ -26,6 +29,7 @@
 #include "engine/store/cells.hpp"
 #include "engine/store/nodes.hpp"
 #include "engine/store/quad_points.hpp"
+#include "engine/store/walls.hpp"
 #include "systems/assemble/materials/material.hpp"
 #include "systems/remesh/remesh.hpp"
 
@@ -52,7 +56,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
 void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
                      const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
-                     const RemeshStats& remesh, std::vector<double>& values);
+                     const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values);
 
 double stress_component(const Mat3& sigma, StressComponent c);
 

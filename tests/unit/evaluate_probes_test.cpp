@@ -46,7 +46,7 @@ struct Probed {
     StepContext ctx;
     ctx.scene = &model.scene;
     std::vector<double> values;
-    evaluate_probes(ctx, plan, model.materials, model.nodes, model.cells, model.quad, model.system, model.bc, 0, RemeshStats{}, values);
+    evaluate_probes(ctx, plan, model.materials, model.nodes, model.cells, model.quad, model.system, model.bc, 0, RemeshStats{}, {}, values);
     return values;
   }
   // Sets F_n = diag(1 + e, 1 + e, 1) at point q of cell c of body "a" (cells of "a" come first in the block).

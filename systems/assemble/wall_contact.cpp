@@ -1,0 +1,128 @@
+#include "systems/assemble/wall_contact.hpp"
+
+#include <algorithm>
+
+#include "engine/core/parallel.hpp"
+#include "engine/mesh/boundary_edges.hpp"
+
+namespace loom {
+namespace {
+
+// The anchor of a stick contact during the step (see the header).
+Vec2 anchor(const Nodes<2>& nodes, Index i, const WallPlane& p) {
+  if (nodes.in_contact[i] != 0.0) return nodes.contact_point[i];
+  const Vec2 x_n = nodes.position_n(i);
+  return x_n - p.gap(x_n) * p.normal;
+}
+
+// The penalty force of plane p on node i at x (the residual's part; the wall pushes with minus this) and its
+// 2 x 2 tangent.
+struct NodeContact {
+  Vec2 r = Vec2::Zero();
+  Eigen::Matrix2d K = Eigen::Matrix2d::Zero();
+  double penetration = 0.0;
+};
+
+NodeContact contact_of(const Walls& walls, const WallPlane& p, const Nodes<2>& nodes, Index i, const Vec2& x) {
+  NodeContact c;
+  // A node exactly on the wall is in contact too: its force is zero but its tangent holds a body that starts
+  // resting on the wall (a static run would otherwise begin with a singular matrix).
+  const double g = p.gap(x);
+  if (!(g <= 0.0)) return c;
+  const Wall& w = walls.walls[std::size_t(p.wall)];
+  const double k = w.k_n * std::max(0.0, -nodes.contact_area[i].dot(p.normal));
+  const Eigen::Matrix2d nn = p.normal * p.normal.transpose();
+  c.penetration = -g;
+  c.r = k * g * p.normal;
+  c.K = k * nn;
+  if (w.stick) {
+    const Eigen::Matrix2d tt = Eigen::Matrix2d::Identity() - nn;
+    c.r += k * tt * (x - anchor(nodes, i, p));
+    c.K += k * tt;
+  }
+  return c;
+}
+
+}  // namespace
+
+void measure_contact_areas(const StepContext&, const std::vector<Cells>& cells, Nodes<2>& nodes) {
+  std::fill(nodes.contact_area.begin(), nodes.contact_area.end(), Vec2::Zero());
+  for (const Cells& cb : cells) {
+    const int corners = corners_of_stride(cb.stride);
+    const bool quadratic = cb.stride == 6 || cb.stride == 9;
+    for (const BoundaryEdge& e : boundary_edges(cb.nodes.values(), cb.stride)) {
+      // Counter-clockwise cells: the body lies left of a -> b, so the outward normal times the length is the
+      // edge turned clockwise.
+      const Vec2 d = nodes.position_n(e.b) - nodes.position_n(e.a), area(d.y(), -d.x());
+      const double end = quadratic ? 1.0 / 6.0 : 0.5;
+      nodes.contact_area[e.a] += end * area;
+      nodes.contact_area[e.b] += end * area;
+      if (quadratic) nodes.contact_area[cb.node(e.cell, corners + e.side)] += (2.0 / 3.0) * area;
+    }
+  }
+}
+
+void add_wall_contact(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes, bool tangent, LinearSystem& system) {
+  const DofMap& dofs = system.dofs;
+  double* values = system.pattern.matrix.valuePtr();
+  for_each_index(nodes.size(), [&](Index i) {
+    if (nodes.contact_area[i].isZero(0.0)) return;
+    const Vec2 x = nodes.position(i);
+    NodeContact sum;
+    for (const WallPlane& p : walls.planes) {
+      if (!walls.acts_on(p, node_body[std::size_t(i)])) continue;
+      const NodeContact c = contact_of(walls, p, nodes, i, x);
+      sum.r += c.r, sum.K += c.K;
+    }
+    if (sum.r.isZero(0.0) && sum.K.isZero(0.0)) return;
+    Index eq[2];
+    for (int d = 0; d < 2; ++d) {
+      const Index dof = dofs.dof(i, d);
+      eq[d] = dofs.equation[std::size_t(dof)];
+      system.residual_full[dof] += sum.r[d];
+      if (eq[d] != kNoIndex) system.residual[eq[d]] += sum.r[d];
+    }
+    if (!tangent) return;
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        if (eq[a] == kNoIndex || eq[b] == kNoIndex || sum.K(a, b) == 0.0) continue;
+        const Index slot = a == b ? system.pattern.diagonal_slot[std::size_t(eq[a])] : find_slot(system.pattern, eq[a], eq[b]);
+        values[slot] += sum.K(a, b);
+      }
+  });
+}
+
+void commit_wall_contact(const StepContext&, const Walls& walls, const std::vector<Index>& node_body, Nodes<2>& nodes) {
+  for_each_index(nodes.size(), [&](Index i) {
+    const Vec2 x = nodes.position(i);
+    bool touching = false;
+    Vec2 point = Vec2::Zero();
+    for (const WallPlane& p : walls.planes) {
+      if (!walls.walls[std::size_t(p.wall)].stick || !walls.acts_on(p, node_body[std::size_t(i)]) || !(p.gap(x) <= 0.0)) continue;
+      if (!touching) point = anchor(nodes, i, p);
+      touching = true;
+    }
+    nodes.in_contact[i] = touching ? 1.0 : 0.0;
+    nodes.contact_point[i] = point;
+  });
+}
+
+std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes) {
+  std::vector<WallResult> results(walls.walls.size());
+  std::vector<int> planes(walls.walls.size(), 0);
+  for (const WallPlane& p : walls.planes) ++planes[std::size_t(p.wall)], results[std::size_t(p.wall)].normal = p.normal;
+  for (std::size_t w = 0; w < results.size(); ++w)
+    if (planes[w] != 1) results[w].normal.setZero();
+  for (Index i = 0; i < nodes.size(); ++i) {  // serial: a sum in a fixed order
+    const Vec2 x = nodes.position_n(i);
+    for (const WallPlane& p : walls.planes) {
+      if (!walls.acts_on(p, node_body[std::size_t(i)])) continue;
+      WallResult& r = results[std::size_t(p.wall)];
+      r.penetration = std::max(r.penetration, -p.gap(x));
+      if (!nodes.contact_area[i].isZero(0.0)) r.force -= contact_of(walls, p, nodes, i, x).r;
+    }
+  }
+  return results;
+}
+
+}  // namespace loom

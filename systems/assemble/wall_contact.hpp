@@ -1,0 +1,41 @@
+// Penalty contact of mesh nodes with rigid walls (seed 001 §1.8; engine/store/walls.hpp).
+//
+// A node i of a body the plane acts on, at x = X + u, is in contact when g = (x - x_w) . n <= 0. Its share of
+// the boundary that faces the wall, A_i = max(0, -a_i . n) with a_i its outward boundary area vector in B_n
+// (fixed during the step, so the tangent is exact; a corner node on a flat base counts only its base edge),
+// carries the penalty
+//   r_i += k_N A_i g n,                    K_ii += k_N A_i n n^T          (normal)
+//   r_i += k_N A_i (I - n n^T)(x - c),     K_ii += k_N A_i (I - n n^T)    (stick walls)
+// with c the node's first-contact point: where it touched at an earlier converged step, or else the projection
+// on the plane of its position at the start of this step. The residual holds f_int - f_ext, so the force the
+// wall exerts on the node is minus these terms. A resting body's nodes settle at g = -p / k_N (p the contact
+// pressure): k_N = 100 E / h keeps g below 1 % of h while p < E.
+#pragma once
+
+#include <vector>
+
+#include "engine/graph/step_context.hpp"
+#include "engine/linalg/linear_system.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/walls.hpp"
+
+namespace loom {
+
+// Each node's outward boundary area vector in B_n: its share of each boundary edge (half of it on linear cells;
+// 1/6 to the corners and 2/3 to the mid-node of the three-node edges of tri6 and quad9, the integrals of their
+// edge shape functions) times the edge's length and outward normal. Interior nodes get 0.
+void measure_contact_areas(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes);
+
+// Adds the penalty terms of every node behind a wall to the assembled Newton system (residual_full, residual,
+// and with `tangent` the matrix). Each node writes only its own entries.
+void add_wall_contact(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes, bool tangent, LinearSystem& system);
+
+// After a converged step, before commit_step moves u into u_n: nodes behind a stick wall keep (or get) their
+// first-contact point; nodes that left every stick wall forget it.
+void commit_wall_contact(const StepContext& ctx, const Walls& walls, const std::vector<Index>& node_body, Nodes<2>& nodes);
+
+// The force each wall exerts on the bodies and its largest penetration, at the converged state (u_n).
+std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes);
+
+}  // namespace loom
