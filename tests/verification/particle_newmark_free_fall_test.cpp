@@ -53,7 +53,9 @@ struct FreeFall {
   std::vector<Vec2> u;  // every particle at the end
 };
 
-FreeFall check_free_fall(const std::string& initial, double c1, double c2, bool check_F = true) {
+// `tolerance` bounds the relative error of the particles' u and v: round-off, amplified by the conditioning of the
+// particle mass matrix that the soft stiffness sets (see below).
+FreeFall check_free_fall(const std::string& initial, double c1, double c2, bool check_F = true, double tolerance = 1e-10) {
   SCOPED_TRACE("initial acceleration " + initial + ", C_E " + std::to_string(c1));
   const SceneSpec scene = testing::scene_from_text(scene_text(initial, c1, c2));
   testing::TempDir dir("pn_free_fall_" + initial);
@@ -81,8 +83,8 @@ FreeFall check_free_fall(const std::string& initial, double c1, double c2, bool 
     if (check_F) EXPECT_LE((particles.F[p] - Mat3::Identity()).norm(), 1e-10);
     out.u.push_back(particles.u[p]);
   }
-  EXPECT_LE(worst_u, 1e-10);
-  EXPECT_LE(worst_v, 1e-10);
+  EXPECT_LE(worst_u, tolerance);
+  EXPECT_LE(worst_v, tolerance);
   EXPECT_GT(u_exact.norm() / 0.25, 4.0);  // fell across more than four cells
   std::printf("[particle Newmark free fall] a_0 %-11s C_E %g: probes %.1e; all %d particles: u %.1e, v %.1e; Newton %lld\n",
               initial.c_str(), c1, worst, int(particles.X.size()), worst_u, worst_v, summary.newton_iterations);
@@ -91,15 +93,17 @@ FreeFall check_free_fall(const std::string& initial, double c1, double c2, bool 
 
 // Conditioning: a node of an edge cell whose few particles sit where its shape function nearly vanishes is
 // held only by the soft stiffness. Without it the particle mass matrix is nearly singular and F picks up
-// 1e-4; with the paper's smallest constants (1e-3, 1e-7) the particles' u and v are exact to 1e-11 but F of
-// a particle next to such a node to only 2e-3. These runs take C_E = (0.1, 0.01), well conditioned, and the
-// third compares the paper's constants with them on the particles' displacements.
+// 1e-4; with the paper's smallest constants (1e-3, 1e-7) the particles' u is exact to 1e-11 and v (which
+// divides the step's displacement error by beta dt^2) to 2e-10 (AMD EPYC, OpenBLAS 0.3.21; the digits below
+// that depend on the BLAS kernels), but F of a particle next to such a node to only 2e-3. These runs take
+// C_E = (0.1, 0.01), well conditioned, and the third compares the paper's constants with them on the particles'
+// displacements, with a tolerance of 1e-8 for that ill-conditioned run.
 TEST(ParticleNewmarkFreeFall, ExactWithTheEquilibriumInitialAcceleration) { check_free_fall("equilibrium", 0.1, 0.01); }
 
 TEST(ParticleNewmarkFreeFall, ClosedFormWithZeroInitialAcceleration) { check_free_fall("zero", 0.1, 0.01); }
 
 TEST(ParticleNewmarkFreeFall, SoftStiffnessLeavesATranslationAlone) {
-  const FreeFall plain = check_free_fall("zero", 0.1, 0.01, false), soft = check_free_fall("zero", 1e-3, 1e-7, false);
+  const FreeFall plain = check_free_fall("zero", 0.1, 0.01, false), soft = check_free_fall("zero", 1e-3, 1e-7, false, 1e-8);
   ASSERT_EQ(plain.u.size(), soft.u.size());
   double worst = 0.0;
   for (std::size_t p = 0; p < plain.u.size(); ++p) worst = std::max(worst, (plain.u[p] - soft.u[p]).norm() / plain.u[p].norm());
