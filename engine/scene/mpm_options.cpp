@@ -16,7 +16,7 @@ void read_newmark_parameters(const TableReader& time, TimeSpec& t) {
   if (2.0 * t.beta < t.gamma) {
     std::ostringstream os;
     os << "Newmark with beta = " << t.beta << ", gamma = " << t.gamma << " is only conditionally stable: take 2 beta >= gamma (e.g. beta = "
-       << 0.25 * (t.gamma + 0.5) * (t.gamma + 0.5) << ")";
+       << 0.25 * (t.gamma + 0.5) * (t.gamma + 0.5) << "; mpm.scheme = \"particle_newmark\" needs 2 beta > gamma strictly, e.g. 0.3)";
     time.error(time.has("beta") ? "beta" : "gamma", os.str());
   }
 }
@@ -84,6 +84,19 @@ void read_mpm_options(SceneSpec& s, const TableReader& root) {
   }
   if (s.time.integrator != Integrator::newmark)
     time.error("integrator", "scheme = \"particle_newmark\" integrates with integrator = \"newmark\" (the particles carry v and a)");
+  // A particle's velocity that the grid cannot represent sees no grid increment, and Newmark's particle update of
+  // (v, dt a) then has the matrix [[1 - gamma/beta, 1 - gamma/(2 beta)], [-1/beta, 1 - 1/(2 beta)]]: det = 1 - (gamma
+  // - 1/2) / beta, trace = 2 - (gamma + 1/2) / beta. Both eigenvalues lie in the unit disk without a repeated -1 only
+  // if 2 beta > gamma strictly: at 2 beta = gamma = 1/2 (the average acceleration rule) the eigenvalue -1 is double
+  // and such velocities grow linearly. The paper takes beta = 0.3, the default here.
+  if (!time.has("beta")) s.time.beta = 0.3;
+  if (2.0 * s.time.beta == s.time.gamma) {  // 2 beta < gamma is refused with every scheme (read_newmark_parameters)
+    std::ostringstream os;
+    os << "scheme = \"particle_newmark\" needs 2 beta > gamma strictly (beta = " << s.time.beta << ", gamma = " << s.time.gamma
+       << "): at 2 beta = gamma the particles' update has a double eigenvalue -1 for velocities the grid cannot hold, which then "
+          "grow step by step ([Aulisa 2019] takes beta = 0.3, the default of this scheme)";
+    time.error(time.has("beta") ? "beta" : "gamma", os.str());
+  }
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
     if (s.bodies[b].element != Formulation::p1)
       bodies[b].error("element", "scheme = \"particle_newmark\" is a displacement formulation: element = \"p1\" (it names the grid's "
