@@ -1,8 +1,11 @@
 #include "systems/output/snapshot_frame.hpp"
 
+#include "engine/mesh/triangle_geometry.hpp"
+
 #include <cmath>
 
 #include "engine/core/parallel.hpp"
+#include "engine/mesh/triangle_geometry.hpp"
 
 namespace loom {
 
@@ -69,6 +72,10 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
       const double p = -sigma_mean.trace() / 3.0;
       const Mat3 dev = sigma_mean + p * Mat3::Identity();
       pressure.values[k] = p;
+      // Seed 001's triangles: the volume ratio of the triangle itself, current over reference area (their F_n is a
+      // per-triangle record that a remesh maps from a neighbour, not the triangle's own history).
+      if (integrates_on_domains(cb.formulation) && cb.measure.used() && !nodes.u_n.empty())
+        J_mean = signed_area(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2))) / cb.measure[c];
       J.values[k] = J_mean;
       von_mises.values[k] = std::sqrt(1.5 * dev.squaredNorm());
       body.values[k] = cb.body[c];
