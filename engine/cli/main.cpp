@@ -66,9 +66,9 @@ Args parse(int argc, char** argv) {
       const std::string n = value(opt);
       try {
         std::size_t used = 0;
-        const int v = std::stoi(n, &used);
-        LOOM_CHECK(used == n.size() && v >= 1, loom::InputError, "");
-        return v;
+        const int count = std::stoi(n, &used);
+        LOOM_CHECK(used == n.size() && count >= 1, loom::InputError, "");
+        return count;
       } catch (const std::exception&) {
         throw loom::InputError(std::string(opt) + " needs a positive integer, got '" + n + "'");
       }
@@ -180,6 +180,11 @@ int run(const Args& a) {
     else
       std::cerr << "; no checkpoint (set [output] checkpoint_every to be able to continue a run)\n";
     return summary.stopped ? 0 : 128 + summary.interrupted_by;
+  }
+  if (!a.quiet && summary.settled) {
+    const loom::ProbeSpec& watched = scene.probes[std::size_t(scene.time.stop_probe)];
+    std::cout << "loom: settled at step " << summary.last_converged_step << " of " << scene.time.steps << " (t = " << summary.last_converged_time
+              << "): |" << watched.name << "| < " << scene.time.stop_below << " (time.stop_when)\n";
   }
   if (!a.quiet)
     std::cout << "loom: " << steps << (summary.restarted ? " (continued from step " + std::to_string(summary.restarted_from) + ")" : "")

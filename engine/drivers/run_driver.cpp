@@ -30,6 +30,7 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
       *schedule.log << "step " << c.step << " (t = " << c.t << ", dt = " << c.dt << "): " << st.failure << "; cutting the step back\n";
     }
   };
+  callbacks.settled = hooks.settled;
   TimeLoopResult result;
   // A RunError outside a step's graph (the initial state, a checkpoint, the writer): the run stops there, as
   // failed, with the steps that completed before it.
@@ -69,9 +70,10 @@ void summarise_run(const TimeLoopResult& result, const StepStatus& status, const
   summary.completed = result.completed;
   summary.interrupted_by = result.interrupted_by;
   summary.stopped = result.stopped;
+  summary.settled = result.settled;
   summary.steps_done = result.last_converged_step;
   summary.last_converged_step = result.last_converged_step;
-  summary.last_converged_time = result.completed ? double(schedule.steps) * schedule.dt
+  summary.last_converged_time = result.completed ? double(result.last_converged_step) * schedule.dt
                                 : summary.converged ? double(result.last_converged_step) * schedule.dt
                                                     : result.last_converged_time;
   summary.newton_iterations = status.total_iterations;

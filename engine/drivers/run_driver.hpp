@@ -34,6 +34,8 @@ struct RunHooks {
   std::function<void()> wait_for_writer;
   // Writes the checkpoint of the completed step (the writer has finished the step's frame).
   std::function<void(int step)> write_checkpoint;
+  // After each completed step: true ends the run there as completed (time.stop_when).
+  std::function<bool(const StepContext&)> settled;
 };
 
 TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks);

@@ -10,6 +10,7 @@ struct RunSummary {
   bool completed = false;           // it reached the last step of the scene
   int interrupted_by = 0;           // the signal that stopped it between steps (SIGINT, SIGTERM), 0 if none
   bool stopped = false;             // stopped after the step asked for (`loom run --stop-after N`)
+  bool settled = false;             // completed before the last step: time.stop_when's probe fell below its bound
   bool restarted = false;           // continued from a checkpoint, of step restarted_from
   int restarted_from = 0;
   int steps_requested = 0;

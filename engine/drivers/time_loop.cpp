@@ -59,6 +59,10 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
     }
     result.last_converged_step = step;
     if (callbacks.step_done) callbacks.step_done(ctx, status);
+    if (callbacks.settled && callbacks.settled(ctx)) {
+      result.completed = result.settled = true;
+      return result;
+    }
     if (step == range.stop_after && step < steps) {
       result.stopped = true;
       return result;

@@ -3,7 +3,8 @@
 // Sub-steps complete the scene step at exactly t = step * dt (ctx.step_end marks the last one).
 // A RunError thrown by a system (an anomaly, not a Newton failure) ends the loop with the partial result.
 // Between scene steps the loop stops early when a signal asked it to (engine/core/interrupt.hpp) or when
-// the requested last step is reached (`stop_after`); the state is then that of a completed step.
+// the requested last step is reached (`stop_after`); the state is then that of a completed step. A run also
+// completes before its last step when the `settled` callback says so.
 #pragma once
 
 #include <functional>
@@ -24,12 +25,15 @@ struct TimeLoopResult {
   bool anomaly = false;              // a system threw (RunError): no cut-back is tried
   int interrupted_by = 0;            // the signal that stopped the loop between steps, 0 if none
   bool stopped = false;              // stopped after step `stop_after` as asked
+  bool settled = false;              // completed early: `settled` said the run had reached its end state
   std::string failure;
 };
 
 struct TimeLoopCallbacks {
   std::function<void(const StepContext&, const StepStatus&)> step_done;  // after each scene step
   std::function<void(const StepContext&, const StepStatus&)> cut_back;   // after each failed attempt
+  // After step_done: true ends the run as completed (a flow that has come to rest, time.stop_when).
+  std::function<bool(const StepContext&)> settled;
 };
 
 struct TimeLoopRange {

@@ -45,6 +45,7 @@ std::string run_json(const RunIdentity& id, const RunSummary& s) {
      << "  \"status\": \"" << (!s.converged ? "failed" : s.completed ? "completed" : s.stopped ? "stopped" : "interrupted") << "\",\n"
      << "  \"converged\": " << (s.converged ? "true" : "false") << ",\n"
      << "  \"completed\": " << (s.completed ? "true" : "false") << ",\n"
+     << "  \"settled\": " << (s.settled ? "true" : "false") << ",\n"
      << "  \"interrupted_by\": \"" << (s.interrupted_by ? signal_name(s.interrupted_by) : "") << "\",\n"
      << "  \"restarted_from_step\": " << (s.restarted ? std::to_string(s.restarted_from) : std::string("null")) << ",\n"
      << "  \"last_converged_step\": " << s.last_converged_step << ",\n"

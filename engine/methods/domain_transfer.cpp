@@ -27,6 +27,18 @@ Key corners_of(const Cells& c, Index t) {
   return key;
 }
 
+// The volume ratio of a domain from its triangles' current and reference areas: sum A_n / sum A_0.
+double domain_reference_jacobian(const Nodes<2>& nodes, const Cells& c, const Edges<2>& e, Index k) {
+  double current = 0.0, reference = 0.0;
+  for (int s = 0; s < 2; ++s) {
+    const Index t = e.triangles[2 * k + s];
+    if (t == kNoIndex) continue;
+    current += signed_area(nodes.position_n(c.node(t, 0)), nodes.position_n(c.node(t, 1)), nodes.position_n(c.node(t, 2)));
+    reference += c.measure[t];
+  }
+  return current / reference;
+}
+
 }  // namespace
 
 DomainSnapshot snapshot_domains(const std::vector<Edges<2>>& edges, const std::vector<Cells>& cells) {
@@ -44,23 +56,84 @@ DomainSnapshot snapshot_domains(const std::vector<Edges<2>>& edges, const std::v
   return s;
 }
 
+void renumber_domain_snapshot(const std::vector<Index>& old_to_new, DomainSnapshot& s) {
+  auto renumber = [&](Key key, Key& out) {
+    for (Index& v : key) {
+      if (v == kNoIndex) continue;
+      if (v >= Index(old_to_new.size()) || old_to_new[std::size_t(v)] == kNoIndex) return false;
+      v = old_to_new[std::size_t(v)];
+    }
+    // Sorted as key_of and corners_of sort (an edge's third slot stays kNoIndex).
+    if (key[0] > key[1]) std::swap(key[0], key[1]);
+    if (key[2] != kNoIndex) {
+      if (key[1] > key[2]) std::swap(key[1], key[2]);
+      if (key[0] > key[1]) std::swap(key[0], key[1]);
+    }
+    out = key;
+    return true;
+  };
+  std::map<Key, Index> domain_of;
+  for (const auto& [key, k] : s.domain_of)
+    if (Key next; renumber(key, next)) domain_of[next] = k;
+  std::map<Key, double> reference_area;
+  for (const auto& [key, area] : s.reference_area)
+    if (Key next; renumber(key, next)) reference_area[next] = area;
+  s.domain_of.swap(domain_of);
+  s.reference_area.swap(reference_area);
+}
+
 DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
-                                     const std::vector<char>& j_projection, std::vector<Edges<2>>& edges) {
+                                     const std::vector<char>& j_projection, std::vector<Edges<2>>& edges, const std::vector<double>* density) {
   DomainTransferStats stats;
-  // Triangles: reference areas.
-  for (Cells& c : cells) {
+  // Triangles: reference areas. A surviving triangle keeps its own.
+  std::vector<std::vector<char>> is_new(cells.size());
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    Cells& c = cells[b];
     if (!integrates_on_domains(c.formulation)) continue;
     c.measure.use();
     c.measure.resize(c.size());
+    is_new[b].assign(std::size_t(c.size()), 0);
     for (Index t = 0; t < c.size(); ++t) {
       const auto it = old.reference_area.find(corners_of(c, t));
-      if (it != old.reference_area.end()) {
-        c.measure[t] = it->second;
-        continue;
-      }
-      const double J_e = (nodes.J_node[c.node(t, 0)] + nodes.J_node[c.node(t, 1)] + nodes.J_node[c.node(t, 2)]) / 3.0;
-      c.measure[t] = signed_area(nodes.position_n(c.node(t, 0)), nodes.position_n(c.node(t, 1)), nodes.position_n(c.node(t, 2))) / J_e;
+      if (it != old.reference_area.end()) c.measure[t] = it->second;
+      else is_new[b][std::size_t(t)] = 1;
     }
+  }
+  auto area_n = [&](const Cells& c, Index t) {
+    return signed_area(nodes.position_n(c.node(t, 0)), nodes.position_n(c.node(t, 1)), nodes.position_n(c.node(t, 2)));
+  };
+  if (density) {
+    // Mass kept: each particle's lumped mass M_a (of the old mesh, carried through any change of the particle set)
+    // less what its surviving triangles still give it, D_a = M_a - sum_kept rho A_0 / 3 >= 0, is what its new
+    // triangles must give it. Shared out as a mass per current area r_a = D_a / sum_new A_n / 3, a new triangle
+    // gets rho A_0 = A_n (r_a + r_b + r_c) / 3, and sum_new rho A_0 = sum_a D_a: the body's mass is unchanged.
+    std::vector<double> kept(std::size_t(nodes.size()), 0.0), fresh_area(std::size_t(nodes.size()), 0.0);
+    for (std::size_t b = 0; b < cells.size(); ++b)
+      for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
+        for (int a = 0; a < 3; ++a) {
+          const std::size_t i = std::size_t(cells[b].node(t, a));
+          if (is_new[b][std::size_t(t)]) fresh_area[i] += area_n(cells[b], t) / 3.0;
+          else kept[i] += (*density)[std::size_t(cells[b].body[t])] * cells[b].measure[t] / 3.0;
+        }
+    std::vector<double> rate(std::size_t(nodes.size()), 0.0);
+    for (std::size_t i = 0; i < rate.size(); ++i)
+      if (fresh_area[i] > 0.0) rate[i] = std::max(0.0, nodes.lumped_mass[Index(i)] - kept[i]) / fresh_area[i];
+    for (std::size_t b = 0; b < cells.size(); ++b)
+      for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
+        if (is_new[b][std::size_t(t)]) {
+          const Cells& c = cells[b];
+          const double r = (rate[std::size_t(c.node(t, 0))] + rate[std::size_t(c.node(t, 1))] + rate[std::size_t(c.node(t, 2))]) / 3.0;
+          cells[b].measure[t] = area_n(c, t) * r / (*density)[std::size_t(c.body[t])];
+        }
+  } else {
+    // The volume from the particles' nodal J: A_0 = A_n / J_e (the spec's reading of eqs 42, 48).
+    for (std::size_t b = 0; b < cells.size(); ++b)
+      for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
+        if (is_new[b][std::size_t(t)]) {
+          const Cells& c = cells[b];
+          const double J_e = (nodes.J_node[c.node(t, 0)] + nodes.J_node[c.node(t, 1)] + nodes.J_node[c.node(t, 2)]) / 3.0;
+          cells[b].measure[t] = area_n(c, t) / J_e;
+        }
   }
   // Domains: rebuilt, then their history.
   edges.clear();
@@ -101,7 +174,7 @@ DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& 
     for (Index k = 0; k < e.size(); ++k, ++next) {
       Mat3 b = be[next];
       if (copy_from[next] == kNoIndex) {
-        b = with_volume_ratio(b, domain_nodal_jacobian(nodes, e, k));
+        b = with_volume_ratio(b, density ? domain_reference_jacobian(nodes, cells[std::size_t(e.cell_block)], e, k) : domain_nodal_jacobian(nodes, e, k));
         ++stats.projected;
       } else {
         ++stats.kept;

@@ -3,8 +3,12 @@
 //  - a new one takes the isochoric part of the nearest old domain's b^e (closest midpoint, CPM),
 //    b_bar = (det b^e)^(-1/3) b^e, and the volumetric part from the particles' nodal J (eq 56):
 //    b^e = (J^k)^(2/3) b_bar, J^k = the mean of J^l over the domain's pressure nodes (an edge's two ends).
-//  - a triangle keeps its reference area if it survives, and a new one gets A_n / J_e with J_e the mean nodal J
-//    of its corners (the spec's reading of eqs 42, 48 and of the lumped mass, ambiguity 21).
+//  - a triangle keeps its reference area if it survives. A new one, in a dynamic run (lumped masses), gets its share
+//    of the mass its corners lost with their old triangles, so that the body's mass stays what it was (transfer_domains
+//    below), and a new domain takes its volume ratio from its triangles, sum A_n / sum A_0, so that its b^e agrees
+//    with the mass it holds; without lumped masses (static runs) a new triangle gets A_n / J_e with J_e the mean nodal
+//    J of its corners and a new domain the nodal J of its ends (the spec's reading of eqs 42, 48 and 56, ambiguity
+//    21). docs/free_surface.md shows why the nodal reading lets the mass drift in a flow that remeshes every step.
 // The spec applies the projection to every edge at every remesh; loom keeps surviving edges as they are, so
 // that remeshing a resting body changes nothing (an idle remesh must not creep) and the projection acts only
 // where the mesh changed. docs/es_fem.md says why.
@@ -37,9 +41,16 @@ struct DomainTransferStats {
 
 DomainSnapshot snapshot_domains(const std::vector<Edges<2>>& edges, const std::vector<Cells>& cells);
 
+// After the particles were renumbered (old_to_new[i]: new index of particle i, kNoIndex if removed): the keys
+// follow; a domain or triangle that lost a node can no longer survive (its history stays for the nearest-domain
+// transfer).
+void renumber_domain_snapshot(const std::vector<Index>& old_to_new, DomainSnapshot& snapshot);
+
 // Rebuilds `edges` on the new `cells` (geometry at x_n) and fills their history and the triangles' reference
-// areas from the snapshot; nodes.J_node must be in use.
+// areas from the snapshot; nodes.J_node must be in use. With `density` (per body), nodes.lumped_mass must hold each
+// particle's mass before the remesh (the mass-conserving reading above).
 DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
-                                     const std::vector<char>& j_projection, std::vector<Edges<2>>& edges);
+                                     const std::vector<char>& j_projection, std::vector<Edges<2>>& edges,
+                                     const std::vector<double>* density = nullptr);
 
 }  // namespace loom

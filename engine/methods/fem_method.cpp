@@ -12,6 +12,7 @@
 #include "engine/io/files.hpp"
 #include "engine/io/vtk_writer.hpp"
 #include "engine/methods/conditioning_note.hpp"
+#include "engine/methods/inlet_flow.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/methods/model_checks.hpp"
 #include "engine/methods/run_output.hpp"
@@ -36,7 +37,10 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     pfem_settings_.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
     pfem_settings_.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
     pfem_settings_.every = p.every;
+    pfem_settings_.remesh.surface = p.constrained_surface ? SurfaceMode::constrained : SurfaceMode::alpha;
+    pfem_settings_.edits = {p.insert_above, p.remove_below};
     topology_ = initial_topology(m_);
+    check_inlets();
   }
   probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   build_graph();
@@ -88,6 +92,28 @@ void FemRun::check_model() const {
       }
     }
   check_point_probes_inside(scene_, X, corners, corner_body);
+}
+
+// An inlet's section must be an edge of its body's initial mesh: the particles on it are the first row released.
+void FemRun::check_inlets() const {
+  for (std::size_t k = 0; k < scene_.inlets.size(); ++k) {
+    const InletSpec& in = scene_.inlets[k];
+    const InletFrame frame = inlet_frame(in, topology_);
+    const std::size_t on = particles_on_section(frame, topology_, m_.nodes, in.body).size();
+    std::ostringstream os;
+    os << in.where << ": error: inlet[" << k << "].from: " << on << " particle(s) of body \"" << scene_.bodies[std::size_t(in.body)].name
+       << "\" lie on the section from (" << in.from.x() << ", " << in.from.y() << ") to (" << in.to.x() << ", " << in.to.y()
+       << "); the body's mesh must begin at the section (an edge of it on the section, the material on the side the velocity points to)";
+    LOOM_CHECK(on >= 2, InputError, os.str());
+    // The body lies downstream: its centroid is on the side the velocity points to.
+    Vec2 centre = Vec2::Zero();
+    for (Index i : topology_.points_of_body[std::size_t(in.body)]) centre += m_.nodes.X[i];
+    centre /= double(topology_.points_of_body[std::size_t(in.body)].size());
+    std::ostringstream side;
+    side << in.where << ": error: inlet[" << k << "].velocity: points away from body \"" << scene_.bodies[std::size_t(in.body)].name
+         << "\" (the material would flow in on the side where the body is not)";
+    LOOM_CHECK(frame.distance(centre) > 0.0, InputError, side.str());
+  }
 }
 
 void FemRun::build_graph() {
@@ -142,7 +168,7 @@ void FemRun::build_graph() {
 }
 
 void FemRun::remesh_node() {
-  last_remesh_ = remesh_model(pfem_settings_, topology_, m_, timers_);
+  last_remesh_ = remesh_model(pfem_settings_, ctx_.t - ctx_.dt, topology_, m_, timers_);
   if (last_remesh_.changed) {
     probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
     last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
@@ -177,7 +203,7 @@ void FemRun::newton_node() {
 }
 
 void FemRun::probes_node() {
-  const std::vector<WallResult> walls = m_.walls.empty() ? std::vector<WallResult>{} : wall_results(m_.walls, m_.node_body, m_.nodes);
+  const std::vector<WallResult> walls = m_.walls.empty() ? std::vector<WallResult>{} : wall_results(m_.walls, m_.node_body, m_.nodes, m_.system.dofs);
   evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations,
                   last_remesh_.stats(), walls, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
@@ -297,6 +323,7 @@ RunSummary FemRun::run() {
     output_node();
   };
   hooks.wait_for_writer = [&] { writer_.wait(); };
+  hooks.settled = [&](const StepContext& c) { return stop_condition_met(scene_.time, c.t, probe_values_); };
   if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summarise_run(result, status_, schedule, summary);

@@ -56,6 +56,9 @@ class FemRun final : public MethodRun {
  private:
   void resolve_probe_groups();
   void check_model() const;
+  void check_inlets() const;
+  // The particle set may change during the run (insertion, removal, inflow): the checkpoint holds its size.
+  bool particles_change() const { return pfem_ && (pfem_settings_.edits.active() || !scene_.inlets.empty()); }
   void build_graph();
   void write_initial_state();
   void set_equilibrium_acceleration();

@@ -3,6 +3,7 @@
 // interface.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -40,6 +41,13 @@ class MethodRun {
   // The probes' values at the last step written to probes.csv, in the order of the scene's probes.
   virtual const std::vector<double>& probe_values() const = 0;
 };
+
+// time.stop_when: the step that just completed (its probes in `probe_values`) ends the run, as completed.
+inline bool stop_condition_met(const TimeSpec& time, double t, const std::vector<double>& probe_values) {
+  if (time.stop_probe == kNoIndex || t < time.stop_after * (1.0 - 1e-12)) return false;
+  const double v = probe_values[std::size_t(time.stop_probe)];
+  return v == v && std::abs(v) < time.stop_below;  // a NaN reading never settles
+}
 
 // Builds the stores of the scene's method; scene errors that need the mesh are InputErrors.
 std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options);

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "engine/core/errors.hpp"
 #include "engine/mesh/colouring.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/domain_transfer.hpp"
+#include "engine/methods/inlet_flow.hpp"
+#include "engine/methods/particle_edits.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/assemble/elements/tri3.hpp"
 #include "systems/assemble/elements/tri6.hpp"
@@ -51,6 +54,49 @@ void set_midpoint(Nodes<2>& nodes, Index to, Index a, Index b) {
   });
 }
 
+// What the state transfer needs of the old mesh: its quadrature points (positions in B_n and F_n, the first
+// point of each cell) and its integration domains' history. Taken before the particle set changes, since that
+// renumbers the nodes and drops the mid-nodes.
+struct OldMesh {
+  std::vector<Vec2> x;
+  std::vector<Mat3> F;
+  std::map<std::pair<Index, Index>, Index> first_point;  // (block, cell) -> index of its first point in x
+  DomainSnapshot domains;
+};
+
+OldMesh snapshot_old_mesh(const FemModel& m) {
+  OldMesh old;
+  for (std::size_t k = 0; k < m.cells.size(); ++k) {
+    const QuadPoints<2>& q = m.quad[k];
+    for (Index c = 0; c < m.cells[k].size(); ++c) {
+      old.first_point[{Index(k), c}] = Index(old.x.size());
+      for (int p = 0; p < q.per_cell; ++p) {
+        old.x.push_back(quad_point_position(m.nodes, m.cells[k], q.per_cell, c, p));
+        old.F.push_back(q.F_n[c * q.per_cell + p]);
+      }
+    }
+  }
+  old.domains = snapshot_domains(m.edges, m.cells);  // es_pfem: the domains' history
+  return old;
+}
+
+// Inserts, removes and adds inflow particles as planned; the old mesh is snapshot first and its domain keys
+// renumbered. Returns whether the particle set changed.
+bool change_particles(const PfemSettings& settings, double t_n, PfemTopology& topo, FemModel& m, std::optional<OldMesh>& old,
+                      RemeshReport& report) {
+  if (!settings.edits.active() && m.scene.inlets.empty()) return false;
+  ParticleSetChange change(topo);
+  plan_particle_edits(settings.edits, topo, m.nodes, fixed_particles(topo, m.bc), change);
+  plan_inflow(m.scene.inlets, t_n, m.nodes, topo, change);
+  if (change.empty()) return false;
+  old = snapshot_old_mesh(m);
+  const std::vector<Index> old_to_new = apply_particle_change(change, topo, m);
+  renumber_domain_snapshot(old_to_new, old->domains);
+  report.inserted = Index(change.add.size());
+  report.removed = change.n_removed();
+  return true;
+}
+
 }  // namespace
 
 PfemTopology initial_topology(const FemModel& m) {
@@ -72,6 +118,16 @@ PfemTopology initial_topology(const FemModel& m) {
     topo.points_of_body[std::size_t(m.node_body[std::size_t(i)])].push_back(i);
   }
   for (std::size_t b = 0; b < n_bodies; ++b) topo.boundary[b] = boundary_of(topo.triangles[b]);
+  // h0 of particle insertion and removal: remesh.spacing, or the mean edge length of the body's initial mesh.
+  topo.spacing.assign(n_bodies, m.scene.pfem.spacing);
+  for (std::size_t b = 0; b < n_bodies && m.scene.pfem.spacing <= 0.0; ++b) {
+    double sum = 0.0;
+    const auto& t = topo.triangles[b];
+    for (std::size_t k = 0; k < t.size(); k += 3)
+      for (int e = 0; e < 3; ++e) sum += (m.nodes.X[t[k + std::size_t(e)]] - m.nodes.X[t[k + std::size_t((e + 1) % 3)]]).norm();
+    topo.spacing[b] = t.empty() ? 0.0 : sum / double(t.size());  // interior edges counted twice, boundary edges once
+  }
+  topo.inlets.assign(m.scene.inlets.size(), InletState{});
   // Loads on the particles: linear edge functions, since mid-nodes do not persist (a quadratic edge's
   // mid-node load would vanish with it).
   topo.tractions = m.bc.traction_edges;
@@ -79,10 +135,17 @@ PfemTopology initial_topology(const FemModel& m) {
   return topo;
 }
 
-RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemModel& m, Timers& timers) {
+RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology& topo, FemModel& m, Timers& timers) {
   RemeshReport report;
-  ScopedTimer triangulate(timers, "remesh/triangulate");
   const std::size_t n_bodies = m.scene.bodies.size();
+  for (std::size_t b = 0; b < n_bodies; ++b) report.area_before += corner_area(m.nodes, topo.triangles[b]);
+
+  // 0. Particles inserted, removed or poured in, with the previous mesh edited to match.
+  ScopedTimer edit(timers, "remesh/change_particles");
+  std::optional<OldMesh> old;
+  const bool particles_changed = change_particles(settings, t_n, topo, m, old, report);
+  edit.stop();
+  ScopedTimer triangulate(timers, "remesh/triangulate");
 
   // 1. New corner triangles of every body (local to the body's particles, then global).
   std::vector<std::vector<Index>> triangles(n_bodies);
@@ -99,7 +162,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
     std::vector<double> d_avg;
     if (settings.remesh.local) average_neighbour_distance(x, old_local, d_avg);  // eq 17 on the previous mesh
     RemeshResult r;
-    remesh_points(x, constraints, settings.remesh, d_avg, r);
+    remesh_points(x, constraints, old_local, settings.remesh, d_avg, r);
     // Nothing to solve on, and halving the step cannot bring the triangles back: stop at once.
     LOOM_CHECK(!r.triangles.empty() || pts.empty(), RunError,
                "remesh: the alpha shape (remesh.alpha = " << settings.remesh.alpha << ", l_char "
@@ -108,7 +171,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
                    << "\": raise remesh.alpha (triangles whose circumradius exceeds alpha * l_char are removed)");
     for (Index v : r.triangles) triangles[b].push_back(pts[std::size_t(v)]);
     report.rejected += r.rejected, report.isolated += r.isolated, report.triangles += r.triangles.size() / 3;
-    report.area_before += corner_area(m.nodes, topo.triangles[b]);
+    report.merged += r.merged, report.crossings += r.crossings;
     report.area_after += r.area;
   }
 
@@ -119,7 +182,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
       const Index* n = m.cells[k].cell_nodes(c);
       old_cell[sorted(n[0], n[1], n[2])] = {Index(k), c};
     }
-  report.changed = false;
+  report.changed = particles_changed;
   for (std::size_t b = 0; b < n_bodies && !report.changed; ++b) {
     if (triangles[b].size() != topo.triangles[b].size()) report.changed = true;
     for (std::size_t t = 0; t < triangles[b].size() && !report.changed; t += 3)
@@ -131,21 +194,12 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   if (!report.changed && !quadratic) return report;  // nothing to transfer, nothing to rebuild
   ScopedTimer rebuild(timers, "remesh/rebuild_cells");
 
-  // 3. Old quadrature points: positions in B_n and histories.
-  std::vector<Vec2> old_x;
-  std::vector<Mat3> old_F;
-  std::map<std::pair<Index, Index>, Index> first_point;  // (block, cell) -> index of its first point in old_x
-  for (std::size_t k = 0; k < m.cells.size(); ++k) {
-    const QuadPoints<2>& q = m.quad[k];
-    for (Index c = 0; c < m.cells[k].size(); ++c) {
-      first_point[{Index(k), c}] = Index(old_x.size());
-      for (int p = 0; p < q.per_cell; ++p) {
-        old_x.push_back(quad_point_position(m.nodes, m.cells[k], q.per_cell, c, p));
-        old_F.push_back(q.F_n[c * q.per_cell + p]);
-      }
-    }
-  }
-  const DomainSnapshot old_domains = snapshot_domains(m.edges, m.cells);  // es_pfem: the domains' history
+  // 3. Old quadrature points: positions in B_n and histories (already taken if the particle set changed).
+  if (!old) old = snapshot_old_mesh(m);
+  const std::vector<Vec2>& old_x = old->x;
+  const std::vector<Mat3>& old_F = old->F;
+  const auto& first_point = old->first_point;
+  const DomainSnapshot& old_domains = old->domains;
   std::vector<Cells> old_cells;
   if (!report.changed) {
     for (std::size_t b = 0; b < n_bodies; ++b) triangles[b] = topo.triangles[b];  // keep the cell order
@@ -208,7 +262,7 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
           int q = 0;  // the old point that sits at the same corner
           if (per_cell == 3)
             while (oc.node(it->second.second, q) != n[p]) ++q;
-          from = first_point[it->second] + q;
+          from = first_point.at(it->second) + q;
         }
         copy_from.push_back(from);
       }
@@ -219,7 +273,12 @@ RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topo, FemM
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
-  if (!m.edges.empty()) transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges);
+  if (!m.edges.empty()) {
+    // Dynamic runs carry each particle's mass in lumped_mass: the new triangles share it out (mass conserved).
+    std::vector<double> density;
+    for (const BodyMaterial& b : m.materials) density.push_back(b.density);
+    transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr);
+  }
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
 
   transfer.stop();
@@ -237,6 +296,7 @@ void rebuild_system(FemModel& m, const PfemTopology& topo, bool connectivity_cha
   // redone because the pattern version changes).
   const int per_node = m.system.dofs.per_node;
   m.bc = build_boundary_conditions(m.scene, m.nodes, m.cells, m.node_body, m.regions, per_node, /*tie_mid_nodes=*/true, &topo.tractions);
+  add_inlet_rows(m.scene.inlets, topo, m.bc);
   std::vector<DofKind> kinds = dof_kinds(m.bc, m.cells, m.nodes.size(), per_node);
   std::vector<char> in_cell(std::size_t(m.nodes.size()), 0);
   for (const Cells& cb : m.cells)

@@ -3,15 +3,16 @@
 // mid-nodes are dropped and re-created on straight edges with interpolated nodal data, and the
 // dof numbering, sparsity and colouring are rebuilt -- the last two only if the connectivity changed.
 //
-// In the pfem recipe the particles are the first n_points nodes of the Nodes store: they keep their index
-// and all their nodal columns across remeshes; TRI6 mid-nodes are appended after them. (DESIGN §2 puts
-// persistent particles in Points: keeping them as the leading nodes avoids copying every nodal column
-// twice per step and a second index space; Points stays the store of MPM's material points.)
+// Before the triangulation the particle set may change (engine/methods/particle_edits.hpp: insertion at long
+// edges and removal of close pairs; engine/methods/inlet_flow.hpp: inflow rows); the previous mesh is edited with
+// it, so that its boundary still constrains the new triangulation. pfem_topology.hpp says where particles live.
 #pragma once
 
 #include <vector>
 
 #include "engine/methods/fem_model.hpp"
+#include "engine/methods/particle_edits.hpp"
+#include "engine/methods/pfem_topology.hpp"
 #include "engine/timing/timers.hpp"
 #include "systems/map/map_state.hpp"
 #include "systems/remesh/remesh.hpp"
@@ -22,30 +23,24 @@ struct PfemSettings {
   RemeshSettings remesh;
   MapSettings map;
   int every = 1;  // remesh every this many steps
-};
-
-// What the next remesh needs of the current mesh: per body, its corner triangles and boundary polygon.
-struct PfemTopology {
-  Index n_points = 0;                              // nodes [0, n_points) are the particles
-  std::vector<std::vector<Index>> points_of_body;  // global node indices of each body's particles
-  std::vector<std::vector<Index>> triangles;       // per body: corner connectivity (global indices)
-  std::vector<std::vector<Edge>> boundary;         // per body: boundary polygon (global indices)
-  std::vector<TractionEdge<2>> tractions;          // loaded edges of the initial mesh, on corners (dead loads)
+  ParticleEditSettings edits;
 };
 
 struct RemeshReport {
   bool changed = false;       // the connectivity changed: sparsity, colouring and dofs were rebuilt
-  Index triangles = 0, rejected = 0, isolated = 0;
-  double area_before = 0.0, area_after = 0.0;  // of the corner triangles in X_n
+  Index triangles = 0, rejected = 0, isolated = 0, merged = 0, crossings = 0;
+  Index inserted = 0, removed = 0;             // particles
+  double area_before = 0.0, area_after = 0.0;  // of the corner triangles in X_n (before: of the mesh before any change)
   MapStats map;
-  RemeshStats stats() const { return {changed, rejected, isolated, area_after - area_before}; }
+  RemeshStats stats() const { return {changed, rejected, isolated, merged, crossings, inserted, removed, area_after - area_before}; }
 };
 
 // The topology of the mesh the model was built with (the generated mesh).
 PfemTopology initial_topology(const FemModel& model);
 
-// Remeshes the model's bodies at X = X_ref + u_n and transfers the state; see the header comment.
-RemeshReport remesh_model(const PfemSettings& settings, PfemTopology& topology, FemModel& model, Timers& timers);
+// Remeshes the model's bodies at X = X_ref + u_n and transfers the state; see the header comment. t_n: the time at
+// the start of the step (inlets start and end by it).
+RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology& topology, FemModel& model, Timers& timers);
 
 // Boundary conditions (eq-24 ties, frozen tractions of `topology`), dofs, sparsity and scatters of the
 // model's current cells; the dof numbering and pattern are rebuilt if the connectivity changed or the dof

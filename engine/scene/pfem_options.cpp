@@ -27,6 +27,15 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
       remesh.error("lchar", "expected a length > 0 or \"local\", got \"" + l->text + "\"");
     }
   }
+  s.pfem.constrained_surface = remesh.string("surface") == "constrained";
+  s.pfem.insert_above = remesh.real("insert_above");
+  s.pfem.remove_below = remesh.real("remove_below");
+  s.pfem.spacing = remesh.real("spacing");
+  // Removal below r h0 and insertion above i h0 must leave room between them, or an inserted particle could be
+  // removed again at the next remesh (its two half edges would be shorter than r h0).
+  if (s.pfem.insert_above > 0.0 && s.pfem.remove_below > 0.0 && !(s.pfem.insert_above > 2.0 * s.pfem.remove_below))
+    remesh.error("insert_above", "must exceed twice remesh.remove_below (" + std::to_string(s.pfem.remove_below) +
+                                     "): the halves of a split edge would be removed again");
   s.pfem.btm = map.string("scheme") == "btm";
   s.pfem.iso = int(map.integer("iso"));
   if (!s.pfem.btm && map.has("iso") && s.pfem.iso != 0) map.error("iso", "iso is used by scheme = \"btm\" only (CPM copies F as it is)");

@@ -15,12 +15,15 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   p.kind = pick<ProbeKind>(kind, {{"reaction", ProbeKind::reaction}, {"point", ProbeKind::point}, {"newton", ProbeKind::newton},
                                   {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
                                   {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
-                                  {"stress", ProbeKind::stress}, {"wall_force", ProbeKind::wall_force}, {"penetration", ProbeKind::penetration}});
+                                  {"stress", ProbeKind::stress}, {"wall_force", ProbeKind::wall_force}, {"penetration", ProbeKind::penetration},
+                                  {"speed", ProbeKind::speed}, {"mass", ProbeKind::mass}});
   p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
   p.max = t.string("bound") == "max";
   const std::string quantity = t.string("quantity");
   p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
-               {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated}});
+               {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated},
+               {"merged", RemeshQuantity::merged}, {"crossings", RemeshQuantity::crossings}, {"inserted", RemeshQuantity::inserted},
+               {"removed", RemeshQuantity::removed}});
   const std::string component = t.string("component");
   p.component = component == "y" ? 1 : 0;
   p.stress = pick<StressComponent>(component, {{"xx", StressComponent::xx}, {"yy", StressComponent::yy}, {"xy", StressComponent::xy},
@@ -96,6 +99,12 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
       if (s.scene.method != Method::pfem && s.scene.method != Method::es_pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\" or \"es_pfem\"");
       break;
+    case ProbeKind::speed:
+    case ProbeKind::mass:
+      if (s.scene.method == Method::mpm) t.error("kind", "kind = \"" + kind + "\" reads the nodes and cells of fem, pfem and es_pfem meshes");
+      if (p.kind == ProbeKind::speed && s.time.integrator == Integrator::static_)
+        t.error("kind", "kind = \"speed\" reads nodal velocities: it needs a dynamic time.integrator");
+      [[fallthrough]];
     case ProbeKind::extent:
     case ProbeKind::volume:
     case ProbeKind::pressure_jump: {
@@ -118,6 +127,13 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   if (p.kind != ProbeKind::remesh) unused("quantity");
   if (p.kind != ProbeKind::energy) unused("energy");
   if (p.kind != ProbeKind::wall_force && p.kind != ProbeKind::penetration) unused("wall");
+  if (p.kind != ProbeKind::volume && p.kind != ProbeKind::mass) unused("inlet");
+  if (t.has("inlet")) {
+    const std::string inlet = t.string("inlet");
+    p.inlet = find_by_name(s.inlets, inlet);
+    if (p.inlet == kNoIndex) t.error("inlet", "no [[inlet]] named \"" + inlet + "\" (known: " + names_of(s.inlets) + ")");
+    else if (p.body != kNoIndex && s.inlets[std::size_t(p.inlet)].body != p.body) t.error("inlet", "inlet \"" + inlet + "\" feeds another body");
+  }
   s.probes.push_back(p);
 }
 

@@ -19,6 +19,7 @@
 #include "engine/scene/pfem_options.hpp"
 #include "engine/scene/smoothed_options.hpp"
 #include "engine/scene/probe_options.hpp"
+#include "engine/scene/inlet_options.hpp"
 #include "engine/scene/wall_options.hpp"
 #include "engine/scene/loader_support.hpp"
 #include "engine/scene/schema_validator.hpp"
@@ -65,8 +66,10 @@ class Loader {
     for (const auto& b : root_.array("body")) read_body(s, b);
     for (const auto& b : root_.array("boundary")) read_boundary(s, b);
     for (const auto& w : root_.array("wall")) read_wall(s, w);
+    for (const auto& i : root_.array("inlet")) read_inlet(s, i);
     s.body_force = read_vector(root_.table("body_force"), diag_);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
+    read_stop_when(s);
     read_pfem_options(s, root_);
     const auto grid = root_.table("grid");
     s.grid.present = grid.present();
@@ -107,6 +110,17 @@ class Loader {
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
     read_newmark_parameters(t, s.time);
+  }
+
+  // After the probes: time.stop_when names one.
+  void read_stop_when(SceneSpec& s) {
+    const auto t = root_.table("time").table("stop_when");
+    if (!t.present()) return;
+    const std::string probe = t.string("probe");
+    s.time.stop_probe = find_by_name(s.probes, probe);
+    if (t.has("probe") && s.time.stop_probe == kNoIndex) t.error("probe", "no [[probe]] named \"" + probe + "\" (known: " + names_of(s.probes) + ")");
+    s.time.stop_below = t.real("below");
+    s.time.stop_after = t.real("after");
   }
 
   void read_solver(SceneSpec& s) {

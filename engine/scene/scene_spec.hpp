@@ -30,9 +30,9 @@ enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
 enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file };
-enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
-enum class RemeshQuantity { area_change, changed, rejected, isolated };
+enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
 struct ExpressionSpec {
@@ -56,6 +56,10 @@ struct TimeSpec {
   InitialAcceleration initial_acceleration = InitialAcceleration::zero;  // newmark, bossak
   double alpha = -0.3;  // bossak: alpha_B in [-1/3, 0]
   double beta = 0.25, gamma = 0.5;  // newmark (fem; mpm with scheme particle_newmark)
+  // time.stop_when: the run ends (completed) after the first step at t >= stop_after whose probe `stop_probe`
+  // reads a magnitude below `stop_below` (a flow that has come to rest); time.steps is then an upper bound.
+  Index stop_probe = kNoIndex;
+  double stop_below = 0.0, stop_after = 0.0;
 };
 
 struct SolverSpec {
@@ -196,7 +200,22 @@ struct ProbeSpec {
   Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
   bool max = true;            // extent: largest (true) or smallest coordinate
   RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh
+  Index inlet = kNoIndex;     // volume, mass: only the part of the body downstream of this inlet's section
   EnergyPart energy = EnergyPart::total;  // energy
+  SourceRef where;
+};
+
+// Inflow (seed 001 §4.4, §1.8 of its spec): material enters body `body` through the section from `from` to `to` at
+// `velocity` (per unit time; it must point across the section) between t = start and start + duration. A row of
+// particles behind the section, `spacing` apart (0: the body's initial mean edge length), is driven at the
+// velocity; when it reaches the section it is released and a new row is added one spacing behind it.
+struct InletSpec {
+  std::string name;
+  Index body = 0;
+  Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+  Vec2 velocity = Vec2::Zero();
+  double start = 0.0, duration = 0.0;
+  double spacing = 0.0;
   SourceRef where;
 };
 
@@ -208,6 +227,12 @@ struct PfemSpec {
   int every = 1;
   bool btm = false;    // map scheme: false = CPM
   int iso = 0;         // 0, 1, 2
+  // Free surfaces (seed 001 §3.1): keep the triangles inside the previous boundary (the alpha test decides only
+  // where surfaces meet or the body opens) instead of every triangle that passes the alpha test.
+  bool constrained_surface = false;
+  // Particle insertion and removal (factors of the body's spacing h0; 0: off), h0 (0: each body's initial mean
+  // edge length).
+  double insert_above = 0.0, remove_below = 0.0, spacing = 0.0;
 };
 
 struct OutputSpec {
@@ -229,6 +254,7 @@ struct SceneSpec {
   MpmSpec mpm;
   std::vector<BoundarySpec> boundaries;
   std::vector<WallSpec> walls;
+  std::vector<InletSpec> inlets;
   VectorExpression body_force;  // global, per unit mass
   std::vector<ProbeSpec> probes;
   PfemSpec pfem;

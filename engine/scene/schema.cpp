@@ -3,18 +3,10 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "engine/scene/schema_keys.hpp"
+
 namespace loom {
 namespace {
-
-KeySpec key(std::string path, ValueKind kind, std::string doc) {
-  KeySpec k;
-  k.path = std::move(path);
-  k.kind = kind;
-  k.doc = std::move(doc);
-  return k;
-}
-
-using K = ValueKind;
 
 std::vector<KeySpec> build_schema() {
   const std::string expr = " A number or a muparser expression in t (time), x, y (reference coordinates).";
@@ -25,8 +17,7 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
   s.push_back(key("scene.method", K::choice,
                   "Method (recipe) that runs the scene: fem (updated-Lagrangian finite elements on a fixed mesh), pfem (remeshing "
-                  "every step, [Schewe 2024] §3), es_pfem (the edge-based smoothed elements remeshed every step, [Reinold 2021]; "
-                  "no walls or inflow yet) or mpm (implicit mixed material point method, [Moreno et al.]); mpm_fem ([Aulisa 2019]) is "
+                  "every step, [Schewe 2024] §3), es_pfem (the edge-based smoothed elements remeshed every step, [Reinold 2021]) or mpm (implicit mixed material point method, [Moreno et al.]); mpm_fem ([Aulisa 2019]) is "
                   "planned.")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
@@ -46,7 +37,8 @@ std::vector<KeySpec> build_schema() {
                   "highest frequencies more.").by_default("-0.3").at_least(-1.0 / 3.0).at_most(0));
   s.push_back(key("time.beta", K::real,
                   "newmark (method fem; method mpm with mpm.scheme = \"particle_newmark\"): beta of Newmark's method; unconditionally "
-                  "stable for 2 beta >= gamma >= 1/2. 1/4 with gamma = 1/2 is the average acceleration rule; [Aulisa 2019] uses 0.3.")
+                  "stable for 2 beta >= gamma >= 1/2. 1/4 with gamma = 1/2 is the average acceleration rule; [Aulisa 2019] uses 0.3, the default "
+                  "of mpm.scheme = \"particle_newmark\", which needs 2 beta > gamma strictly.")
                   .by_default("0.25").above(0).at_most(0.5));
   s.push_back(key("time.gamma", K::real, "newmark: gamma of Newmark's method (see time.beta); gamma > 1/2 damps.").by_default("0.5").at_least(0.5).at_most(1));
   s.push_back(key("time.dt", K::real, "Time step (pseudo-time for static runs; boundary expressions see t = step * dt).").require().above(0));
@@ -57,6 +49,12 @@ std::vector<KeySpec> build_schema() {
                   "newmark, bossak: the acceleration at t = 0: zero ([Moreno et al.] Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
                   "lumped mass, so that a suddenly applied constant load is integrated exactly).")
                   .one_of({"zero", "equilibrium"}).by_default("zero"));
+  s.push_back(key("time.stop_when", K::table,
+                  "End the run early, as completed, after the first step at t >= after whose probe reads a magnitude below `below` "
+                  "(a flow that has come to rest: a speed probe); time.steps is then the most steps the run may take."));
+  s.push_back(key("time.stop_when.probe", K::string, "Name of the [[probe]] to watch.").require());
+  s.push_back(key("time.stop_when.below", K::real, "The run stops when |probe| < below.").require().above(0));
+  s.push_back(key("time.stop_when.after", K::real, "Not before this time (a flow starting from rest).").by_default("0").at_least(0));
   // [solver]
   s.push_back(key("solver", K::table, "Newton-Raphson and linear solver settings."));
   s.push_back(key("solver.max_iterations", K::integer, "Newton iterations allowed per step before a cut-back.").by_default("25").at_least(1));
@@ -238,28 +236,7 @@ std::vector<KeySpec> build_schema() {
                   "marks every outer boundary of the disk grids this way, not the beam's clamped wall).").by_default("false"));
   s.push_back(key("boundary[].pressure", K::expression, "Method mpm, p1p1_up: prescribed grid pressure p (sigma = sigma_dev + p I) at the region's grid nodes, "
                   "e.g. to fix the pressure level of an enclosed incompressible body." + expr));
-  // [[wall]]
-  s.push_back(key("wall", K::table_array,
-                  "Rigid walls (methods fem, pfem, es_pfem; [Reinold 2021] §4.4: ground and walls as planes with a penalty): every node of "
-                  "the body that gets behind a wall, g = (x - point) . normal < 0, is pushed back by the force -k_N A g normal, A its "
-                  "share of the body's boundary that faces the wall (half of each boundary edge, 1/6 and 2/3 on quadratic edges, "
-                  "projected on the wall), with the tangent in the Newton matrix. The nodes are those of the current mesh: PFEM particles that reach the wall feel it."));
-  s.push_back(key("wall[].name", K::string, "Name wall_force and penetration probes refer to.").require());
-  s.push_back(key("wall[].point", K::vec2, "A point of the wall's line."));
-  s.push_back(key("wall[].normal", K::vec2, "Normal of the wall, pointing to the side the material occupies (need not be a unit vector)."));
-  s.push_back(key("wall[].box", K::box, "Instead of point and normal: [[xmin, ymin], [xmax, ymax]], four walls that keep the material inside."));
-  s.push_back(key("wall[].body", K::string, "The body the wall acts on (default: every body)."));
-  s.push_back(key("wall[].contact", K::choice, "Contact law: penalty.").one_of({"penalty"}).by_default("penalty"));
-  s.push_back(key("wall[].penalty", K::real,
-                  "k_N, force per unit boundary length per unit penetration (stress / length). 0 (default): 100 E / h with E the "
-                  "largest Young's modulus of the bodies it acts on and h their mean boundary edge length at the start, so that the "
-                  "penetration stays below 1 % of h while the contact pressure stays below E.")
-                  .by_default("0").at_least(0));
-  s.push_back(key("wall[].slip", K::choice,
-                  "free: frictionless (a symmetry plane); stick: a node in contact is also held at its first-contact point (the projection "
-                  "on the wall of where it was at the start of the step it first touched) by a tangential penalty k_N; it is let go "
-                  "when it leaves the wall.")
-                  .one_of({"free", "stick"}).by_default("free"));
+  add_free_surface_keys(s);  // [[wall]], [[inlet]], [remesh], [map]: engine/scene/schema_free_surface.cpp
   // [body_force]
   s.push_back(key("body_force", K::table, "Body force per unit mass on every body (gravity: y = -9.81); needs density > 0."));
   s.push_back(key("body_force.x", K::expression, "x component." + expr).by_default("0"));
@@ -280,9 +257,14 @@ std::vector<KeySpec> build_schema() {
                   "Method mpm: point probes follow a tracer point that starts at `at` and moves with the grid (the material "
                   "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides. "
                   "wall_force: a `component` (x, y, or normal: along the wall's normal, a single plane) of the force the `wall` exerts "
-                  "on the bodies; penetration: the largest distance of a node behind the `wall` (or behind any wall), >= 0.")
+                  "on the bodies; penetration: the largest distance of a node behind the `wall` (or behind any wall), >= 0. "
+                  "speed (fem, pfem, es_pfem): the largest speed |v| of a body's nodes (a flow at rest). mass (fem, pfem, es_pfem): the "
+                  "body's mass, density times its reference area (the area it would have unstressed: volume is smaller by what the "
+                  "pressure compresses it). volume and mass with `inlet`: only what lies downstream of the inlet's section (the poured "
+                  "material).")
                   .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "stress", "wall_force",
-                           "penetration"}).require());
+                           "penetration", "speed", "mass"}).require());
+  s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));
   s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
   s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y), of a wall_force probe (x, y, normal), or of a stress probe.")
@@ -293,20 +275,11 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));
   s.push_back(key("probe[].quantity", K::choice,
                   "Of a remesh probe: area_change (area after - area before, summed over bodies), changed (1 if the connectivity changed), "
-                  "rejected (triangles removed by the alpha test), isolated (particles in no triangle).")
-                  .one_of({"area_change", "changed", "rejected", "isolated"}));
-  // [remesh], [map]: pfem only
-  s.push_back(key("remesh", K::table, "Remeshing (methods pfem and es_pfem): constrained Delaunay of the particles and alpha-shape test ([Schewe 2024] §3.1); es_pfem rebuilds its edges and transfers their history ([Reinold 2021] §3.5)."));
-  s.push_back(key("remesh.alpha", K::real, "alpha of the alpha-shape test ([Schewe 2024] eq 16): a triangle with circumradius > alpha * l_char is removed.").by_default("1.2").above(0));
-  s.push_back(key("remesh.lchar", K::expression,
-                  "Characteristic length l_char of [Schewe 2024] eq 16: a number, or \"local\" for l_char^loc of eqs 17-18 (mean neighbour distance "
-                  "on the previous mesh, averaged over the triangle's corners).").by_default("\"local\""));
-  s.push_back(key("remesh.every", K::integer, "Remesh before every this many steps.").by_default("1").at_least(1));
-  s.push_back(key("map", K::table, "PFEM state transfer between meshes (method = pfem; [Schewe 2024] §3.2)."));
-  s.push_back(key("map.scheme", K::choice, "cpm: copy from the closest old quadrature point; btm: interpolate in the background triangulation of the old points ([Schewe 2024] eqs 19-21).")
-                  .one_of({"cpm", "btm"}).by_default("cpm"));
-  s.push_back(key("map.iso", K::integer, "BTM interpolation of F: 0 plain, 1 F_vol and F_iso separately, 2 log U and log R of the polar decomposition ([Schewe 2024] eqs 22-23).")
-                  .by_default("0").at_least(0).at_most(2));
+                  "rejected (triangles removed by the alpha test), isolated (particles in no triangle), merged (remesh.surface = "
+                  "constrained: triangles added where two surfaces met), crossings (boundary edges left out of the constraints because "
+                  "they crossed another), inserted and removed (particles added and taken away by remesh.insert_above, "
+                  "remesh.remove_below and [[inlet]]s).")
+                  .one_of({"area_change", "changed", "rejected", "isolated", "merged", "crossings", "inserted", "removed"}));
   s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total"}).by_default("total"));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));

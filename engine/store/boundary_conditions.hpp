@@ -32,7 +32,8 @@ struct BoundaryConditions {
   struct Prescribed {
     Index dof;   // global dof (node * per_node + component)
     Index node;
-    Index expression;
+    Index expression;       // the displacement at t; kNoIndex: the node moves at `velocity` from u_n (an inlet's row)
+    double velocity = 0.0;  // of this component, when expression == kNoIndex
   };
   std::vector<Prescribed> prescribed;
 

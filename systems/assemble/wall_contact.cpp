@@ -43,6 +43,12 @@ NodeContact contact_of(const Walls& walls, const WallPlane& p, const Nodes<2>& n
   return c;
 }
 
+// A node whose displacement is prescribed in both directions (a Dirichlet node, an inlet's driven row behind the
+// section) goes where it is told: no wall acts on it.
+bool driven(const DofMap& dofs, Index i) {
+  return dofs.kind[std::size_t(dofs.dof(i, 0))] == DofKind::prescribed && dofs.kind[std::size_t(dofs.dof(i, 1))] == DofKind::prescribed;
+}
+
 }  // namespace
 
 void measure_contact_areas(const StepContext&, const std::vector<Cells>& cells, Nodes<2>& nodes) {
@@ -66,7 +72,7 @@ void add_wall_contact(const Walls& walls, const std::vector<Index>& node_body, c
   const DofMap& dofs = system.dofs;
   double* values = system.pattern.matrix.valuePtr();
   for_each_index(nodes.size(), [&](Index i) {
-    if (nodes.contact_area[i].isZero(0.0)) return;
+    if (nodes.contact_area[i].isZero(0.0) || driven(dofs, i)) return;
     const Vec2 x = nodes.position(i);
     NodeContact sum;
     for (const WallPlane& p : walls.planes) {
@@ -107,13 +113,14 @@ void commit_wall_contact(const StepContext&, const Walls& walls, const std::vect
   });
 }
 
-std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes) {
+std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes, const DofMap& dofs) {
   std::vector<WallResult> results(walls.walls.size());
   std::vector<int> planes(walls.walls.size(), 0);
   for (const WallPlane& p : walls.planes) ++planes[std::size_t(p.wall)], results[std::size_t(p.wall)].normal = p.normal;
   for (std::size_t w = 0; w < results.size(); ++w)
     if (planes[w] != 1) results[w].normal.setZero();
   for (Index i = 0; i < nodes.size(); ++i) {  // serial: a sum in a fixed order
+    if (driven(dofs, i)) continue;
     const Vec2 x = nodes.position_n(i);
     for (const WallPlane& p : walls.planes) {
       if (!walls.acts_on(p, node_body[std::size_t(i)])) continue;

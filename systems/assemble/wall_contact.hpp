@@ -35,7 +35,8 @@ void add_wall_contact(const Walls& walls, const std::vector<Index>& node_body, c
 // first-contact point; nodes that left every stick wall forget it.
 void commit_wall_contact(const StepContext& ctx, const Walls& walls, const std::vector<Index>& node_body, Nodes<2>& nodes);
 
-// The force each wall exerts on the bodies and its largest penetration, at the converged state (u_n).
-std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes);
+// The force each wall exerts on the bodies and its largest penetration, at the converged state (u_n). Nodes whose
+// displacement is prescribed in both directions are left out here and in add_wall_contact.
+std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes, const DofMap& dofs);
 
 }  // namespace loom

@@ -99,6 +99,10 @@ void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& 
 void apply_boundary_conditions(const StepContext& ctx, const Nodes<2>& nodes, const std::vector<Cells>& cells,
                                const std::vector<BodyMaterial>& materials, BoundaryConditions<2>& bc) {
   for (const auto& p : bc.prescribed) {
+    if (p.expression == kNoIndex) {  // driven at a velocity: u = u_n + dt v
+      bc.target[p.dof] = nodes.u_n[p.node][p.dof % bc.per_node] + ctx.dt * p.velocity;
+      continue;
+    }
     const Vec2& X = nodes.X[p.node];
     bc.target[p.dof] = bc.expressions[std::size_t(p.expression)](ctx.t, X.x(), X.y());
   }

@@ -54,7 +54,57 @@ double gauss_lagrange_weight(const std::array<double, 3>& l, int q) {
   return Lx[q % 3] * Ly[q / 3];  // quad9_gauss: point q = 3 j + i at (g_i, g_j)
 }
 
+// Area of a probe's body cells (weights: dV_n per point, or the seed-001 triangles' reference areas A_0 times rho)
+// on the downstream side of an inlet's section when the plan has one. Summed point by point in cell order, so that
+// an unclipped volume is the plain sum of the weights dV_n.
+double body_measure(const ProbePlan& plan, std::size_t k, bool mass, const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes,
+                    const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad) {
+  const ProbeSpec& p = plan.probes[k];
+  const double rho = materials[std::size_t(p.body)].density;
+  double sum = 0.0;
+  for (std::size_t b = 0; b < cells.size(); ++b) {
+    const Cells& cb = cells[b];
+    const bool reference_area = integrates_on_domains(cb.formulation) && cb.measure.used();
+    for (Index c = 0; c < cb.size(); ++c) {
+      if (cb.body[c] != p.body) continue;
+      const double f = p.inlet == kNoIndex ? 1.0
+                                            : fraction_downstream(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)),
+                                                                  nodes.position_n(cb.node(c, 2)), plan.downstream[k][0], plan.downstream[k][1]);
+      if (mass && reference_area) {
+        sum += rho * cb.measure[c] * f;
+        continue;
+      }
+      for (int q = 0; q < quad[b].per_cell; ++q) {
+        const Index i = c * quad[b].per_cell + q;
+        sum += (mass ? rho * quad[b].weight_n[i] / quad[b].F_n[i].determinant() : quad[b].weight_n[i]) * f;
+      }
+    }
+  }
+  return sum;
+}
+
 }  // namespace
+
+double fraction_downstream(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& point, const Vec2& normal) {
+  const double whole = signed_area(a, b, c);
+  if (whole == 0.0) return 0.0;
+  // Sutherland-Hodgman against one line: the polygon of the triangle's part with d >= 0.
+  const Vec2 v[3] = {a, b, c};
+  double d[3];
+  for (int i = 0; i < 3; ++i) d[i] = (v[i] - point).dot(normal);
+  if (d[0] >= 0.0 && d[1] >= 0.0 && d[2] >= 0.0) return 1.0;
+  if (d[0] <= 0.0 && d[1] <= 0.0 && d[2] <= 0.0) return 0.0;
+  Vec2 poly[4];
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (d[i] >= 0.0) poly[n++] = v[i];
+    if ((d[i] > 0.0 && d[j] < 0.0) || (d[i] < 0.0 && d[j] > 0.0)) poly[n++] = v[i] + (d[i] / (d[i] - d[j])) * (v[j] - v[i]);
+  }
+  double area = 0.0;
+  for (int i = 0; i < n; ++i) area += 0.5 * (poly[i].x() * poly[(i + 1) % n].y() - poly[(i + 1) % n].x() * poly[i].y());
+  return area / whole;
+}
 
 ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Cells>& cells,
                       const std::vector<Index>& node_body) {
@@ -71,7 +121,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         const double d = (nodes.X[i] - p.at).squaredNorm();
         if (d < best_d) best_d = d, best = i;
       }
-    } else if (p.kind == ProbeKind::extent) {
+    } else if (p.kind == ProbeKind::extent || p.kind == ProbeKind::speed) {
       for (Index i = 0; i < nodes.size(); ++i)
         if (node_body[std::size_t(i)] == p.body) body_nodes.push_back(i);
     } else if (p.kind == ProbeKind::pressure_jump) {
@@ -108,6 +158,15 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
         }
       }
     plan.samples.push_back(std::move(samples));
+    std::array<Vec2, 2> downstream{Vec2::Zero(), Vec2::Zero()};
+    if (p.inlet != kNoIndex) {  // the section's normal along the inflow (engine/methods/inlet_flow.hpp)
+      const InletSpec& in = scene.inlets[std::size_t(p.inlet)];
+      const Vec2 t = (in.to - in.from).normalized();
+      Vec2 n(-t.y(), t.x());
+      if (n.dot(in.velocity) < 0.0) n = -n;
+      downstream = {in.from, n};
+    }
+    plan.downstream.push_back(downstream);
     plan.node.push_back(best);
     plan.nodes.push_back(std::move(body_nodes));
     plan.cell_pairs.push_back(std::move(pairs));
@@ -147,13 +206,14 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         values[k] = e;
         break;
       }
-      case ProbeKind::volume: {
-        double area = 0.0;
-        for (std::size_t b = 0; b < cells.size(); ++b)
-          for (Index c = 0; c < cells[b].size(); ++c)
-            if (cells[b].body[c] == p.body)
-              for (int q = 0; q < quad[b].per_cell; ++q) area += quad[b].weight_n[c * quad[b].per_cell + q];
-        values[k] = area;
+      case ProbeKind::volume:
+      case ProbeKind::mass:
+        values[k] = body_measure(plan, k, p.kind == ProbeKind::mass, materials, nodes, cells, quad);
+        break;
+      case ProbeKind::speed: {
+        double fastest = 0.0;
+        for (Index i : plan.nodes[k]) fastest = std::max(fastest, nodes.v_n[i].norm());
+        values[k] = fastest;
         break;
       }
       case ProbeKind::remesh:
@@ -162,6 +222,10 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
           case RemeshQuantity::changed: values[k] = remesh.changed ? 1.0 : 0.0; break;
           case RemeshQuantity::rejected: values[k] = remesh.rejected; break;
           case RemeshQuantity::isolated: values[k] = remesh.isolated; break;
+          case RemeshQuantity::merged: values[k] = remesh.merged; break;
+          case RemeshQuantity::crossings: values[k] = remesh.crossings; break;
+          case RemeshQuantity::inserted: values[k] = remesh.inserted; break;
+          case RemeshQuantity::removed: values[k] = remesh.removed; break;
         }
         break;
       case ProbeKind::wall_force: {

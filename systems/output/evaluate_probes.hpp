@@ -17,7 +17,12 @@
 //                 of its 3 x 3 Gauss values;
 //  wall_force:    a component (x, y, along the normal) of the force a wall exerts on the bodies (`walls`, from
 //                 wall_results at the converged state);
-//  penetration:   the largest distance of a node behind the wall (or behind any wall).
+//  penetration:   the largest distance of a node behind the wall (or behind any wall);
+//  speed:         the largest |v_n| over the body's nodes;
+//  mass:          the body's mass: density times the reference area of its cells (a seed-001 triangle's reference
+//                 area A_0, else dV_n / det F_n per quadrature point; for p1p1_uphi F is F~, det F~ = phi);
+//  volume and mass of a probe with an inlet count each cell's part downstream of the inlet's section (the cell's
+//                 corner triangle at x_n clipped by the section's line).
 #pragma once
 
 #include <array>
@@ -46,7 +51,12 @@ struct ProbePlan {
   std::vector<Index> node;                    // point probes: nearest node; others kNoIndex
   std::vector<std::vector<Index>> nodes;      // extent probes: the body's nodes
   std::vector<std::vector<std::array<Index, 3>>> cell_pairs;  // pressure_jump: (block, cell, cell) across interior edges
+  std::vector<std::array<Vec2, 2>> downstream;  // volume, mass with an inlet: a point of its section and the inflow normal
 };
+
+// The part of triangle (a, b, c) on the side of the line through `point` that `normal` points to, as a fraction of
+// its area (0 for a degenerate triangle).
+double fraction_downstream(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& point, const Vec2& normal);
 
 // Finds the node of each point probe (nearest in reference coordinates, among the nodes of its body), the
 // nodes of extent probes and the interior edges of pressure_jump probes.

@@ -86,6 +86,8 @@ void evaluate_particle_probes(const StepContext&, const ParticleProbePlan& plan,
       }
       case ProbeKind::pressure_jump: values[k] = grid.nodes.p.used() ? pressure_jump(grid) : kNaN; break;
       case ProbeKind::volume:  // fem and pfem only (rejected by the scene checks for mpm)
+      case ProbeKind::speed:
+      case ProbeKind::mass:
       case ProbeKind::stress:
       case ProbeKind::wall_force:  // [[wall]] is refused for method mpm
       case ProbeKind::penetration:

@@ -2,24 +2,29 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_set>
+#include <optional>
 
 #include "engine/core/errors.hpp"
 #include "engine/mesh/boundary_edges.hpp"
+#include "systems/remesh/boundary_crossings.hpp"
+#include "systems/remesh/boundary_loops.hpp"
+#include "systems/remesh/point_in_mesh.hpp"
 
 namespace loom {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<Index, Kernel>;
-using FaceBase = CGAL::Constrained_triangulation_face_base_2<Kernel>;
+// Face info: the nesting level of the free-surface flood fill (-1: not reached).
+using FaceBase = CGAL::Triangulation_face_base_with_info_2<int, Kernel, CGAL::Constrained_triangulation_face_base_2<Kernel>>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
-// Exact_predicates_tag: constraints that cross (a polygon folded by a large step) are split, not rejected.
+// Exact_predicates_tag: constraints that cross would be split, not rejected (loom leaves crossing edges out).
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
 
 double circumradius(const Vec2& a, const Vec2& b, const Vec2& c) {
@@ -28,10 +33,40 @@ double circumradius(const Vec2& a, const Vec2& b, const Vec2& c) {
   return twice_area > 0.0 ? ab * bc * ca / (2.0 * twice_area) : std::numeric_limits<double>::infinity();
 }
 
+// Nesting levels by flood fill from the infinite face: crossing a constrained edge goes one level deeper, so the
+// faces inside a closed polygon (and not inside a hole of it) have odd levels.
+void mark_nesting_levels(Cdt& cdt) {
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
+  std::vector<Cdt::Edge> border;
+  auto fill = [&](Cdt::Face_handle start, int level) {
+    std::vector<Cdt::Face_handle> stack{start};
+    while (!stack.empty()) {
+      const Cdt::Face_handle f = stack.back();
+      stack.pop_back();
+      if (f->info() != -1) continue;
+      f->info() = level;
+      for (int i = 0; i < 3; ++i) {
+        const Cdt::Face_handle n = f->neighbor(i);
+        if (n->info() != -1) continue;
+        if (cdt.is_constrained(Cdt::Edge(f, i))) border.emplace_back(f, i);
+        else stack.push_back(n);
+      }
+    }
+  };
+  fill(cdt.infinite_face(), 0);
+  while (!border.empty()) {
+    const Cdt::Edge e = border.back();
+    border.pop_back();
+    const Cdt::Face_handle n = e.first->neighbor(e.second);
+    if (n->info() == -1) fill(n, e.first->info() + 1);
+  }
+}
+
 }  // namespace
 
 void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& constraints,
-                   const RemeshSettings& settings, const std::vector<double>& average_distance, RemeshResult& out) {
+                   const std::vector<Index>& previous_triangles, const RemeshSettings& settings,
+                   const std::vector<double>& average_distance, RemeshResult& out) {
   const Index n = Index(positions.size());
   std::vector<std::pair<Kernel::Point_2, Index>> points;
   points.reserve(positions.size());
@@ -42,13 +77,35 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
              "remesh: " << n - Index(cdt.number_of_vertices()) << " points coincide with others (the body has collapsed)");
   std::vector<Cdt::Vertex_handle> vertex(static_cast<std::size_t>(n));
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) vertex[std::size_t(v->info())] = v;
-  for (const Edge& e : constraints) cdt.insert_constraint(vertex[std::size_t(e[0])], vertex[std::size_t(e[1])]);
-  // Constraints that cross create vertices without info: they would be points loom does not know.
+  const std::vector<char> crossing = crossing_edges(positions, constraints);
+  out.crossings = Index(std::count(crossing.begin(), crossing.end(), 1));
+  for (std::size_t k = 0; k < constraints.size(); ++k)
+    if (!crossing[k]) cdt.insert_constraint(vertex[std::size_t(constraints[k][0])], vertex[std::size_t(constraints[k][1])]);
+  // A constraint through a point splits at it; only crossing constraints create vertices, and they are left out.
   LOOM_CHECK(Index(cdt.number_of_vertices()) == n, RunError,
              "remesh: the previous boundary polygon intersects itself (" << Index(cdt.number_of_vertices()) - n << " crossings)");
 
+  const bool constrained = settings.surface == SurfaceMode::constrained;
+  BoundaryLoops loops;
+  std::optional<PointInMesh> previous;
+  if (constrained) {
+    loops = boundary_loops(n, constraints, &positions);
+    if (out.crossings == 0) mark_nesting_levels(cdt);
+    else previous.emplace(positions, previous_triangles);
+  }
+  // Two corners on different loops (or on none: a point that has left the body), or far apart along one.
+  auto joins_two_surfaces = [&](const Index t[3]) {
+    for (int i = 0; i < 3; ++i) {
+      const Index a = t[i], b = t[(i + 1) % 3];
+      const Index d = steps_along(loops, a, b);
+      if (d == kNoIndex) return true;
+      if (d >= kMergeSteps && length_along(loops, a, b) >= kMergeDetour * (positions[std::size_t(a)] - positions[std::size_t(b)]).norm()) return true;
+    }
+    return false;
+  };
+
   out.triangles.clear();
-  out.rejected = 0;
+  out.rejected = 0, out.merged = 0;
   out.area = 0.0;
   std::vector<char> used(std::size_t(n), 0);
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
@@ -57,7 +114,18 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
     double l_char = settings.l_char;
     if (settings.local)
       l_char = (average_distance[std::size_t(t[0])] + average_distance[std::size_t(t[1])] + average_distance[std::size_t(t[2])]) / 3.0;
-    if (settings.alpha * l_char < circumradius(a, b, c)) {  // eq 16: reject T
+    const bool passes = !(settings.alpha * l_char < circumradius(a, b, c));  // eq 16
+    if (constrained) {
+      const bool inside = previous ? previous->contains((a + b + c) / 3.0) : f->info() % 2 == 1;
+      if (inside && !passes && !f->is_constrained(0) && !f->is_constrained(1) && !f->is_constrained(2)) {
+        ++out.rejected;  // the body opens inside
+        continue;
+      }
+      if (!inside) {
+        if (!passes || !joins_two_surfaces(t)) continue;
+        ++out.merged;
+      }
+    } else if (!passes) {  // eq 16: reject T
       ++out.rejected;
       continue;
     }

@@ -83,7 +83,7 @@ TEST_P(RemeshModelIdentity, AnUnchangedPointCloudChangesNothing) {
   Timers timers;
 
   for (int pass = 0; pass < 3; ++pass) {  // idempotent: a second and third remesh change nothing either
-    const RemeshReport r = remesh_model(settings_of(m), topo, m, timers);
+    const RemeshReport r = remesh_model(settings_of(m), 0.0, topo, m, timers);
     EXPECT_FALSE(r.changed);
     EXPECT_EQ(r.rejected, 0);
     EXPECT_EQ(r.isolated, 0);
@@ -134,7 +134,7 @@ TEST_P(RemeshModelChange, CellsThatKeepTheirCornersKeepTheirHistory) {
   PfemSettings s = settings_of(m);
   s.remesh.alpha = 100.0;
   Timers timers;
-  const RemeshReport r = remesh_model(s, topo, m, timers);
+  const RemeshReport r = remesh_model(s, 0.0, topo, m, timers);
 
   EXPECT_TRUE(r.changed);
   EXPECT_NE(m.system.pattern.version, version);
@@ -166,7 +166,7 @@ TEST_P(RemeshModelChange, CellsThatKeepTheirCornersKeepTheirHistory) {
       EXPECT_NE(std::find(old_values.begin(), old_values.end(), q.F_n[p]), old_values.end());
 
   // The next remesh of the same positions is the identity.
-  const RemeshReport again = remesh_model(s, topo, m, timers);
+  const RemeshReport again = remesh_model(s, 0.0, topo, m, timers);
   EXPECT_FALSE(again.changed);
   EXPECT_EQ(again.map.copied + again.map.interpolated + again.map.fallback, 0);
 }

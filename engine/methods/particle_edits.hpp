@@ -1,0 +1,34 @@
+// Particle insertion and removal for PFEM free-surface flows (seed 001 §3.1: "particles are deleted or inserted
+// to avoid clogging or separation"; the paper gives no criteria, its spec's ambiguity 12 proposes these):
+//  - removal: of two particles joined by an edge of the previous mesh shorter than remove_below * h0, one goes
+//    (an interior one rather than one on the surface; two surface particles only if they are neighbours along it);
+//    its triangles are given to the other, so the mesh stays valid (a removal that would fold a triangle is not
+//    made);
+//  - insertion: a particle at the midpoint of every edge of the previous mesh longer than insert_above * h0, the
+//    triangles split to hold it, its nodal values interpolated linearly (particle_set.hpp).
+// Particles whose motion or load is prescribed (Dirichlet boundaries, dead-load edges, inlet rows) are never
+// removed; edges touching an inlet row are not split. h0 is the body's spacing (PfemTopology::spacing).
+#pragma once
+
+#include <vector>
+
+#include "engine/methods/fem_model.hpp"
+#include "engine/methods/particle_set.hpp"
+#include "engine/methods/pfem_topology.hpp"
+
+namespace loom {
+
+struct ParticleEditSettings {
+  double insert_above = 0.0, remove_below = 0.0;  // factors of h0; 0: off
+  bool active() const { return insert_above > 0.0 || remove_below > 0.0; }
+};
+
+// Plans the removals, then the insertions on what remains, on the previous mesh at X_n; adds them to `change`
+// (which may already hold other edits on the same numbering). `fixed`: per particle, 1 if it must stay.
+void plan_particle_edits(const ParticleEditSettings& settings, const PfemTopology& topo, const Nodes<2>& nodes,
+                         const std::vector<char>& fixed, ParticleSetChange& change);
+
+// Per particle, 1 if its motion or load is prescribed: a Dirichlet dof, an end of a dead-load edge, an inlet row.
+std::vector<char> fixed_particles(const PfemTopology& topo, const BoundaryConditions<2>& bc);
+
+}  // namespace loom
