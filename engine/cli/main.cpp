@@ -184,7 +184,8 @@ int run(const Args& a) {
   if (!a.quiet && summary.settled) {
     const loom::ProbeSpec& watched = scene.probes[std::size_t(scene.time.stop_probe)];
     std::cout << "loom: settled at step " << summary.last_converged_step << " of " << scene.time.steps << " (t = " << summary.last_converged_time
-              << "): |" << watched.name << "| < " << scene.time.stop_below << " (time.stop_when)\n";
+              << "): " << (scene.time.stop_rate ? "the rate of change of " + watched.name : "|" + watched.name + "|") << " < "
+              << scene.time.stop_below << " (time.stop_when)\n";
   }
   if (!a.quiet)
     std::cout << "loom: " << steps << (summary.restarted ? " (continued from step " + std::to_string(summary.restarted_from) + ")" : "")

@@ -48,9 +48,11 @@ void renumber_domain_snapshot(const std::vector<Index>& old_to_new, DomainSnapsh
 
 // Rebuilds `edges` on the new `cells` (geometry at x_n) and fills their history and the triangles' reference
 // areas from the snapshot; nodes.J_node must be in use. With `density` (per body), nodes.lumped_mass must hold each
-// particle's mass before the remesh (the mass-conserving reading above).
+// particle's mass before the remesh (the mass-conserving reading above). `gap_cells` (per block, per cell) flags new
+// triangles that fill a gap outside the previous boundary (two surfaces that met): they held no material, so they
+// take new material, A_0 = A_n / J_e, and no share of the lost mass (the remesh probe's area change says how much).
 DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
                                      const std::vector<char>& j_projection, std::vector<Edges<2>>& edges,
-                                     const std::vector<double>* density = nullptr);
+                                     const std::vector<double>* density = nullptr, const std::vector<std::vector<char>>* gap_cells = nullptr);
 
 }  // namespace loom

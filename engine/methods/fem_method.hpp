@@ -70,6 +70,7 @@ class FemRun final : public MethodRun {
   void probes_node();
   void output_node();
   bool frame_due() const;
+  StopCondition stop_;  // time.stop_when
 
   FemModel m_;  // the stores
   const SceneSpec& scene_;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <deque>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -42,12 +43,25 @@ class MethodRun {
   virtual const std::vector<double>& probe_values() const = 0;
 };
 
-// time.stop_when: the step that just completed (its probes in `probe_values`) ends the run, as completed.
-inline bool stop_condition_met(const TimeSpec& time, double t, const std::vector<double>& probe_values) {
-  if (time.stop_probe == kNoIndex || t < time.stop_after * (1.0 - 1e-12)) return false;
-  const double v = probe_values[std::size_t(time.stop_probe)];
-  return v == v && std::abs(v) < time.stop_below;  // a NaN reading never settles
-}
+// time.stop_when: whether the step that just completed (its probes in `probe_values`) ends the run, as completed.
+// Keeps the watched probe's recent values for a rate over a window.
+class StopCondition {
+ public:
+  bool met(const TimeSpec& time, double t, const std::vector<double>& probe_values) {
+    if (time.stop_probe == kNoIndex) return false;
+    const double v = probe_values[std::size_t(time.stop_probe)];
+    if (!(v == v)) return false;  // a NaN reading never settles
+    const bool late = t >= time.stop_after * (1.0 - 1e-12);
+    if (!time.stop_rate) return late && std::abs(v) < time.stop_below;
+    history_.emplace_back(t, v);
+    while (history_.size() > 2 && history_[1].first <= t - time.stop_over * (1.0 - 1e-12)) history_.pop_front();
+    const double t0 = history_.front().first, v0 = history_.front().second;
+    return late && t - t0 >= time.stop_over * (1.0 - 1e-12) && std::abs(v - v0) < time.stop_below * (t - t0);
+  }
+
+ private:
+  std::deque<std::pair<double, double>> history_;
+};
 
 // Builds the stores of the scene's method; scene errors that need the mesh are InputErrors.
 std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOptions& options);

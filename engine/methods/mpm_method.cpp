@@ -304,7 +304,7 @@ RunSummary MpmRun::run() {
     output_node();
   };
   hooks.wait_for_writer = [&] { writer_.wait(); };
-  hooks.settled = [&](const StepContext& c) { return stop_condition_met(scene_.time, c.t, probe_values_); };
+  hooks.settled = [&](const StepContext& c) { return stop_.met(scene_.time, c.t, probe_values_); };
   if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summary.dofs = m_.system.dofs.n_free;

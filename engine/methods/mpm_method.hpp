@@ -62,6 +62,7 @@ class MpmRun final : public MethodRun {
   void probes_node();
   void output_node();
   bool frame_due() const;
+  StopCondition stop_;  // time.stop_when
 
   MpmModel m_;
   const SceneSpec& scene_;

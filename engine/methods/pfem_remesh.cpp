@@ -149,6 +149,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
 
   // 1. New corner triangles of every body (local to the body's particles, then global).
   std::vector<std::vector<Index>> triangles(n_bodies);
+  std::vector<std::vector<char>> gap(n_bodies);  // per triangle: it fills a gap outside the previous boundary
   for (std::size_t b = 0; b < n_bodies; ++b) {
     const auto& pts = topo.points_of_body[b];
     std::map<Index, Index> local;
@@ -170,6 +171,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
                    << ") removed every triangle of body \"" << m.scene.bodies[b].name
                    << "\": raise remesh.alpha (triangles whose circumradius exceeds alpha * l_char are removed)");
     for (Index v : r.triangles) triangles[b].push_back(pts[std::size_t(v)]);
+    gap[b] = r.merged_face;
     report.rejected += r.rejected, report.isolated += r.isolated, report.triangles += r.triangles.size() / 3;
     report.merged += r.merged, report.crossings += r.crossings;
     report.area_after += r.area;
@@ -202,13 +204,14 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
   const DomainSnapshot& old_domains = old->domains;
   std::vector<Cells> old_cells;
   if (!report.changed) {
-    for (std::size_t b = 0; b < n_bodies; ++b) triangles[b] = topo.triangles[b];  // keep the cell order
+    for (std::size_t b = 0; b < n_bodies; ++b) triangles[b] = topo.triangles[b], gap[b].assign(triangles[b].size() / 3, 0);  // keep the cell order
   }
   old_cells.swap(m.cells);
 
   // 4. New cells; mid-nodes dropped and re-created at straight midpoints with interpolated data.
   m.nodes.resize(topo.n_points);
   m.node_body.resize(std::size_t(topo.n_points));
+  std::vector<std::vector<char>> gap_cells(n_bodies);  // per cell block (at most one per body)
   std::map<std::pair<Index, Index>, Index> mid_of;
   for (std::size_t b = 0; b < n_bodies; ++b) {
     const Formulation element = m.scene.bodies[b].element;
@@ -220,6 +223,8 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
       m.cells.emplace_back(type, element);
       block = &m.cells.back();
     }
+    std::vector<char>& block_gap = gap_cells[std::size_t(block - m.cells.data())];
+    block_gap.insert(block_gap.end(), gap[b].begin(), gap[b].end());
     for (std::size_t t = 0; t < triangles[b].size(); t += 3) {
       const Index v[3] = {triangles[b][t], triangles[b][t + 1], triangles[b][t + 2]};
       block->nodes.values().insert(block->nodes.values().end(), v, v + 3);
@@ -277,7 +282,8 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
     // Dynamic runs carry each particle's mass in lumped_mass: the new triangles share it out (mass conserved).
     std::vector<double> density;
     for (const BodyMaterial& b : m.materials) density.push_back(b.density);
-    transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr);
+    gap_cells.resize(m.cells.size());
+    transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr, &gap_cells);
   }
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
 

@@ -119,7 +119,11 @@ class Loader {
     const std::string probe = t.string("probe");
     s.time.stop_probe = find_by_name(s.probes, probe);
     if (t.has("probe") && s.time.stop_probe == kNoIndex) t.error("probe", "no [[probe]] named \"" + probe + "\" (known: " + names_of(s.probes) + ")");
-    s.time.stop_below = t.real("below");
+    if (t.has("below") == t.has("rate_below")) t.error("", "give either below (the probe's magnitude) or rate_below (its rate of change)");
+    s.time.stop_rate = t.has("rate_below");
+    s.time.stop_below = s.time.stop_rate ? t.real("rate_below") : t.real("below");
+    s.time.stop_over = t.real("over");
+    if (t.has("over") && !s.time.stop_rate) t.error("over", "over is the window of rate_below");
     s.time.stop_after = t.real("after");
   }
 

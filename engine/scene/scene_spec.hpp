@@ -60,6 +60,8 @@ struct TimeSpec {
   // reads a magnitude below `stop_below` (a flow that has come to rest); time.steps is then an upper bound.
   Index stop_probe = kNoIndex;
   double stop_below = 0.0, stop_after = 0.0;
+  bool stop_rate = false;  // stop_below bounds the probe's rate of change over the last stop_over of time
+  double stop_over = 0.0;
 };
 
 struct SolverSpec {

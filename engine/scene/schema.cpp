@@ -51,9 +51,13 @@ std::vector<KeySpec> build_schema() {
                   .one_of({"zero", "equilibrium"}).by_default("zero"));
   s.push_back(key("time.stop_when", K::table,
                   "End the run early, as completed, after the first step at t >= after whose probe reads a magnitude below `below` "
-                  "(a flow that has come to rest: a speed probe); time.steps is then the most steps the run may take."));
+                  "(a flow that has come to rest: a speed probe), or has changed by less than rate_below * over in the last `over` of "
+                  "time (a front that has stopped: an extent probe); time.steps is then the most steps the run may take."));
   s.push_back(key("time.stop_when.probe", K::string, "Name of the [[probe]] to watch.").require());
-  s.push_back(key("time.stop_when.below", K::real, "The run stops when |probe| < below.").require().above(0));
+  s.push_back(key("time.stop_when.below", K::real, "The run stops when |probe| < below.").above(0));
+  s.push_back(key("time.stop_when.rate_below", K::real,
+                  "Instead of below: the run stops when the probe's mean rate of change over the last `over` of time is below this.").above(0));
+  s.push_back(key("time.stop_when.over", K::real, "Window of rate_below (time).").by_default("1").above(0));
   s.push_back(key("time.stop_when.after", K::real, "Not before this time (a flow starting from rest).").by_default("0").at_least(0));
   // [solver]
   s.push_back(key("solver", K::table, "Newton-Raphson and linear solver settings."));

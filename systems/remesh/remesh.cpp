@@ -86,13 +86,16 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
              "remesh: the previous boundary polygon intersects itself (" << Index(cdt.number_of_vertices()) - n << " crossings)");
 
   const bool constrained = settings.surface == SurfaceMode::constrained;
+  // Which faces lie inside the previous boundary: the constrained mode's rule, and in both modes what tells a face
+  // that holds material from one that fills a gap (merged_face). Needs the previous boundary (or mesh).
+  const bool classify = constrained || !previous_triangles.empty();
   BoundaryLoops loops;
   std::optional<PointInMesh> previous;
-  if (constrained) {
-    loops = boundary_loops(n, constraints, &positions);
+  if (classify) {
     if (out.crossings == 0) mark_nesting_levels(cdt);
     else previous.emplace(positions, previous_triangles);
   }
+  if (constrained) loops = boundary_loops(n, constraints, &positions);
   // Two corners on different loops (or on none: a point that has left the body), or far apart along one.
   auto joins_two_surfaces = [&](const Index t[3]) {
     for (int i = 0; i < 3; ++i) {
@@ -105,6 +108,7 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
   };
 
   out.triangles.clear();
+  out.merged_face.clear();
   out.rejected = 0, out.merged = 0;
   out.area = 0.0;
   std::vector<char> used(std::size_t(n), 0);
@@ -115,20 +119,30 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
     if (settings.local)
       l_char = (average_distance[std::size_t(t[0])] + average_distance[std::size_t(t[1])] + average_distance[std::size_t(t[2])]) / 3.0;
     const bool passes = !(settings.alpha * l_char < circumradius(a, b, c));  // eq 16
+    const bool inside = !classify || (previous ? previous->contains((a + b + c) / 3.0) : f->info() % 2 == 1);
+    bool merged = !inside;
     if (constrained) {
-      const bool inside = previous ? previous->contains((a + b + c) / 3.0) : f->info() % 2 == 1;
       if (inside && !passes && !f->is_constrained(0) && !f->is_constrained(1) && !f->is_constrained(2)) {
         ++out.rejected;  // the body opens inside
         continue;
       }
       if (!inside) {
-        if (!passes || !joins_two_surfaces(t)) continue;
+        // Two surfaces close a gap when it is narrower than the mesh: every edge of the face within alpha l_char
+        // (two rows of points h apart join when the gap is below about 0.9 h at alpha = 1.3). Not the
+        // circumradius: in a slit that narrows the faces across it are slivers whose circumradius grows as the gap
+        // closes, so the surfaces would pass through each other unmerged. The gap's area becomes material.
+        // A face in a hole of the body (an enclosed void: nesting level 2, 4, ...) fills it whatever the distances
+        // along its loop: a void the size of a cell has too few boundary edges to tell two surfaces apart.
+        const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+        const bool in_hole = !previous && f->info() > 0;
+        if (!(longest <= settings.alpha * l_char) || !(in_hole || joins_two_surfaces(t))) continue;
         ++out.merged;
       }
     } else if (!passes) {  // eq 16: reject T
       ++out.rejected;
       continue;
     }
+    out.merged_face.push_back(merged ? 1 : 0);
     out.triangles.insert(out.triangles.end(), {t[0], t[1], t[2]});
     for (Index k : t) used[std::size_t(k)] = 1;
     out.area += 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());

@@ -7,8 +7,9 @@
 //    the previous mesh.
 //  - SurfaceMode::constrained (seed 001 §3.1: the free surface is kept as it is): the triangles inside the
 //    previous boundary polygon, so that a concave surface is never filled; the alpha test only decides where the
-//    surface closes or opens. A triangle outside the polygon is added when it passes the test and joins two
-//    surfaces: two of its corners lie on different boundary loops, or are at least kMergeSteps boundary edges
+//    surface closes or opens. A triangle outside the polygon is added when its edges are all shorter than
+//    alpha l_char (not its circumradius: that of a sliver in a closing slit grows as the slit closes) and it fills
+//    a void enclosed by the body or joins two surfaces: two of its corners lie on different boundary loops, or are at least kMergeSteps boundary edges
 //    and kMergeDetour times their distance apart along one (a fold closing, a falling body reaching another part
 //    of the surface; not the two sides of a bend); a triangle inside is removed when it fails the test and none
 //    of its edges is on the surface (the body tearing open inside).
@@ -45,6 +46,7 @@ struct RemeshSettings {
 struct RemeshResult {
   std::vector<Index> triangles;   // 3 point indices per triangle, counter-clockwise
   std::vector<Edge> boundary;     // edges used by one triangle, oriented as in their triangle
+  std::vector<char> merged_face;  // per triangle: 1 if it lies outside the previous boundary (a gap it fills held no material)
   Index rejected = 0;             // triangles removed by the alpha test (alpha mode; constrained: inside ones)
   Index isolated = 0;             // points in no triangle (left out of the solve)
   Index merged = 0;               // constrained: triangles outside the polygon added (two surfaces met)

@@ -107,19 +107,19 @@ TEST(FreeSurfaceRemesh, KeepsAConcaveSurfaceThatTheAlphaShapeFills) {
   EXPECT_TRUE(all_counter_clockwise(body.x, constrained.triangles));
 }
 
-// Two 2 x 2 squares one above the other: [0, 2]^2 and [0, 2] x [2 + gap, 4 + gap]. Across a gap of 0.5 the four
-// triangles that bridge it (each with two corners on one square, one on the other: circumradius 0.56) pass the
-// alpha test and join two loops: the surfaces merge into one body of area 8 + 2 * 0.5 with one outline. Across a
-// gap of 3 they fail (circumradius >= 1.5): two bodies.
+// Two 2 x 2 squares one above the other: [0, 2]^2 and [0, 2] x [2 + gap, 4 + gap]. Across a gap of 0.3 the four
+// triangles that bridge it (two corners on one square, one on the other: edges 1 and sqrt(1 + 0.09) = 1.04) are
+// within alpha l_char = 1.1 and join two loops: the surfaces merge into one body of area 8 + 2 * 0.3 with one
+// outline. Across a gap of 0.5 (edges 1.12) or 3 they stay apart: two bodies.
 TEST(FreeSurfaceRemesh, MergesTwoSurfacesThatMeet) {
-  for (const double gap : {0.5, 3.0}) {
+  for (const double gap : {0.3, 0.5, 3.0}) {
     SquareBody body = square_body(2, 2, [](int, int) { return true; });
     body = square_body(2, 2, [](int, int) { return true; }, Vec2(0.0, 2.0 + gap), body);
     RemeshResult r;
     remesh_points(body.x, boundary_of(body.triangles), body.triangles, settings(SurfaceMode::constrained), {}, r);
-    const bool merged = gap < 1.0;
+    const bool merged = gap < 0.4;
     EXPECT_EQ(r.merged, merged ? 4 : 0) << "gap " << gap;
-    EXPECT_NEAR(r.area, merged ? 9.0 : 8.0, 1e-12);
+    EXPECT_NEAR(r.area, merged ? 8.0 + 2.0 * gap : 8.0, 1e-12);
     EXPECT_EQ(boundary_loops(Index(body.x.size()), r.boundary).length.size(), merged ? 1u : 2u);
     EXPECT_TRUE(all_counter_clockwise(body.x, r.triangles));
   }
