@@ -45,8 +45,14 @@ def quadratic_fit(points):
     return np.linalg.lstsq(A, y, rcond=None)[0]
 
 
+def poured(t, area0, rate, pour, scale=1.0):
+    """What an inlet has put in by time t: the initial area plus rate * t up to the pouring time, times `scale`
+    (the density, for a mass)."""
+    return scale * (area0 + rate * min(t, pour))
+
+
 ANALYTIC = {"neo_hooke_plane_strain_compression_reaction": neo_hooke_plane_strain_compression_reaction,
-            "rolling_disk_x": rolling_disk_x}
+            "rolling_disk_x": rolling_disk_x, "poured": poured}
 
 # Sub-phases shown in the time breakdown, by self time (tools/study computes it), in this order.
 PHASES = [("newton/assemble", "assemble"), ("newton/solve/factorize", "factorize"),

@@ -46,7 +46,10 @@ class FemNewtonProblem final : public NonlinearProblem {
     const auto mode = with_tangent ? AssemblyMode::residual_and_tangent : AssemblyMode::residual;
     fresh_tangent_ = fresh_tangent_ || with_tangent;
     const bool ok = assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
-    if (walls_ && !walls_->empty()) add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
+    if (walls_ && !walls_->empty()) {
+      ScopedTimer t(timers_, "newton/assemble/walls");
+      add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
+    }
     return ok;
   }
   double residual_norm() const override { return system_.residual.norm(); }
