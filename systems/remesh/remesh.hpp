@@ -30,10 +30,11 @@ namespace loom {
 enum class SurfaceMode { alpha, constrained };
 
 // Two corners of a triangle outside the polygon belong to two surfaces that meet when they are at least this
-// many boundary edges apart along one loop (an ear, two edges, is one surface) and the boundary between them is
-// at least kMergeDetour times longer than the gap (a 90-degree bend has 1.4, a slot that has narrowed to a
-// fifth of its depth about 10).
-constexpr Index kMergeSteps = 3;
+// many boundary edges apart along one loop and the boundary between them is at least kMergeDetour times longer
+// than the gap: a sharp fold (two edges whose angle has closed below about 39 degrees, a front that rolls onto the
+// ground beside the body's own base) or a slot that has narrowed to a fifth of its depth (about 10); not an ear of
+// a flat or gently curved surface (a right-angled corner has 1.4).
+constexpr Index kMergeSteps = 2;
 constexpr double kMergeDetour = 3.0;
 
 struct RemeshSettings {
