@@ -24,19 +24,19 @@ def boundary_points(path):
     reader = vtk.vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
-    grid = reader.GetOutput()
-    if grid.GetNumberOfCells() == 0:
+    if reader.GetOutput().GetNumberOfCells() == 0:
         sys.exit(f"{path}: no cells (not a loom frame?)")
-    x = vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
-    count = {}
-    for c in range(grid.GetNumberOfCells()):
-        ids = grid.GetCell(c).GetPointIds()
-        corners = [ids.GetId(k) for k in range(3)]  # tri3 and tri6 alike: the corners come first
-        for k in range(3):
-            e = tuple(sorted((corners[k], corners[(k + 1) % 3])))
-            count[e] = count.get(e, 0) + 1
-    on_boundary = sorted({i for e, n in count.items() if n == 1 for i in e})
-    return x[on_boundary]
+    # The edges used by one triangle only: VTK's boundary edges of the frame's surface (tri6 cells come out linear).
+    surface = vtk.vtkGeometryFilter()
+    surface.SetInputConnection(reader.GetOutputPort())
+    edges = vtk.vtkFeatureEdges()
+    edges.SetInputConnection(surface.GetOutputPort())
+    edges.BoundaryEdgesOn()
+    edges.FeatureEdgesOff()
+    edges.ManifoldEdgesOff()
+    edges.NonManifoldEdgesOff()
+    edges.Update()
+    return vtk_to_numpy(edges.GetOutput().GetPoints().GetData())[:, :2]
 
 
 def main():

@@ -19,11 +19,10 @@ namespace loom {
 namespace {
 
 testing::ProbeTable run_scene(const std::string& scene, const std::vector<std::string>& overrides, const std::string& name) {
-  testing::TempDir dir(name);
-  auto run = testing::make_fem_run(load_scene(std::string(LOOM_SOURCE_DIR) + "/scenes/" + scene, overrides), dir.path());
-  const RunSummary summary = run->run();
+  RunSummary summary;
+  auto probes = testing::run_for_probes(load_scene(std::string(LOOM_SOURCE_DIR) + "/scenes/" + scene, overrides), name, &summary);
   EXPECT_TRUE(summary.converged) << summary.failure;
-  return testing::read_probes(dir.file("probes.csv"));
+  return probes;
 }
 
 TEST(ChannelFlow, PoursTheRightMassAndSpreadsAsTheShallowLayerModel) {

@@ -20,10 +20,7 @@ namespace {
 const std::string kScene = std::string(LOOM_SOURCE_DIR) + "/scenes/moderate_block_pfem.toml";
 
 testing::ProbeTable run_scene(const std::vector<std::string>& overrides, const std::string& name, RunSummary& summary) {
-  testing::TempDir dir(name);
-  auto run = testing::make_fem_run(load_scene(kScene, overrides), dir.path());
-  summary = run->run();
-  return testing::read_probes(dir.file("probes.csv"));
+  return testing::run_for_probes(load_scene(kScene, overrides), name, &summary);
 }
 
 TEST(ModerateBlockWalls, FollowsTheReadingAndNoParticleCrossesALine) {

@@ -107,4 +107,11 @@ ProbeTable read_probes(const std::string& path) {
   return t;
 }
 
+ProbeTable run_for_probes(const SceneSpec& scene, const std::string& name, RunSummary* summary) {
+  TempDir dir(name);
+  const RunSummary done = make_fem_run(scene, dir.path())->run();
+  if (summary) *summary = done;
+  return read_probes(dir.file("probes.csv"));
+}
+
 }  // namespace loom::testing
