@@ -53,6 +53,8 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
     const bool early = result.interrupted_by != 0 || result.stopped;
     if (early && (schedule.checkpoint_every > 0 || result.stopped)) checkpoint(result.last_converged_step);
     if (!result.completed && !early) hooks.write_last_converged_state(result.failed_step, result.last_converged_time);
+    // A run that settles ends between frames: its final state is the one a user opens first.
+    if (result.settled) hooks.write_last_converged_state(result.last_converged_step, ctx.t);
   } catch (const RunError& e) {
     stop(e);
   }

@@ -28,9 +28,10 @@ struct RunSchedule {
 
 struct RunHooks {
   std::function<void()> write_initial_state;
-  // After a failed run: write the last converged state, reached at `last_converged_time` within or before
-  // step `failed_step`, if the recipe writes frames and has not written that one.
-  std::function<void(int failed_step, double last_converged_time)> write_last_converged_state;
+  // After a failed or settled run: write the last converged state, reached at `last_converged_time` within or
+  // before step `step` (the failed step, or the one that settled), if the recipe writes frames and has not
+  // written that one.
+  std::function<void(int step, double last_converged_time)> write_last_converged_state;
   std::function<void()> wait_for_writer;
   // Writes the checkpoint of the completed step (the writer has finished the step's frame).
   std::function<void(int step)> write_checkpoint;

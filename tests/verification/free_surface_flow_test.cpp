@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <string>
 
@@ -183,7 +184,7 @@ TEST(RestingBodyOnWalls, StaysAtRestThroughTenThousandRemeshes) {
 
 TEST(StopWhen, EndsTheRunOnceTheProbeFallsBelowItsBound) {
   // The same block released slightly above the ground settles; the run asks for 2000 steps and stops when the
-  // largest speed is below 1e-4 m/s.
+  // largest speed is below 1e-4 m/s. Frames every 1000 steps: the settled state is written as well.
   const std::string text = "[scene]\nname = \"settle\"\nmethod = \"es_pfem\"\n"
                            "[time]\nintegrator = \"bossak\"\ndt = 5e-3\nsteps = 2000\nstop_when = { probe = \"speed\", below = 1e-4, after = 0.1 }\n"
                            "[[material]]\nname = \"paste\"\nmodel = \"hencky_perzyna\"\nE = 1.0e5\nnu = 0.3\ntau0 = 1000.0\nviscosity = 50.0\ndensity = 2300.0\n"
@@ -192,7 +193,7 @@ TEST(StopWhen, EndsTheRunOnceTheProbeFallsBelowItsBound) {
                            "[body_force]\ny = -9.81\n"
                            "[[wall]]\nname = \"ground\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nslip = \"stick\"\n"
                            "[[probe]]\nname = \"speed\"\nkind = \"speed\"\n"
-                           "[output]\nevery = 0\n";
+                           "[output]\nevery = 1000\n";
   testing::TempDir dir("stop_when");
   auto run = testing::make_fem_run(testing::scene_from_text(text), dir.path());
   const RunSummary summary = run->run();
@@ -205,6 +206,9 @@ TEST(StopWhen, EndsTheRunOnceTheProbeFallsBelowItsBound) {
   EXPECT_LT(speed.back(), 1e-4);
   for (std::size_t k = 21; k + 1 < speed.size(); ++k) EXPECT_GE(speed[k], 1e-4) << "it should have stopped at step " << k;
   EXPECT_NEAR(summary.last_converged_time, summary.steps_done * 5e-3, 1e-12);
+  char frame[32];
+  std::snprintf(frame, sizeof frame, "settle_%06d.vtu", summary.steps_done);
+  EXPECT_TRUE(std::filesystem::exists(dir.file(frame))) << frame << " (the settled state) was not written";
 }
 
 // The same with the top's rate of change: it stops once the top has moved by less than 1e-6 m/s * 0.5 s in the last
