@@ -39,6 +39,7 @@ void build_material_points(const SceneSpec& scene, Points<2>& particles) {
   std::vector<Index> body;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& spec = scene.bodies[b];
+    if (spec.element == Formulation::quad9) continue;  // an FEM body of method mpm_fem: no particles
     const double density = scene.materials[std::size_t(spec.material)].density;
     if (spec.particles.kind != ParticleGenerator::none) {
       const GeneratedParticles g = generate_particles(spec.particles, density, b);

@@ -50,7 +50,7 @@ std::string gb(double bytes) {
 
 MemoryEstimate estimate_memory(const SceneSpec& scene) {
   MemoryEstimate e;
-  if (scene.scene.method == Method::mpm) {
+  if (is_mpm(scene.scene.method)) {
     const BodySpec& body = scene.bodies.at(0);
     const double particles = cells_of(body.mesh) * body.particles_per_cell;
     const double grid = scene.grid.quad4 ? double(scene.grid.mesh.nx) * scene.grid.mesh.ny : cells_of(scene.grid.mesh);
@@ -90,7 +90,7 @@ void check_memory(const SceneSpec& scene) {
   std::string key = "body[0].mesh.divisions";
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (cells_of(scene.bodies[b].mesh) > cells_of(*mesh)) mesh = &scene.bodies[b].mesh, key = "body[" + std::to_string(b) + "].mesh.divisions";
-  if (scene.scene.method == Method::mpm && scene.grid.present && cells_of(scene.grid.mesh) > cells_of(*mesh))
+  if (is_mpm(scene.scene.method) && scene.grid.present && cells_of(scene.grid.mesh) > cells_of(*mesh))
     mesh = &scene.grid.mesh, key = "grid.divisions";
   std::ostringstream os;
   os.precision(3);

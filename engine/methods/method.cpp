@@ -11,7 +11,8 @@ std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOpti
     case Method::fem:
     case Method::pfem:
     case Method::es_pfem: return std::make_unique<FemRun>(scene, options);
-    case Method::mpm: return std::make_unique<MpmRun>(scene, options);
+    case Method::mpm:
+    case Method::mpm_fem: return std::make_unique<MpmRun>(scene, options);
     default: break;
   }
   throw InputError(scene.file + ": error: scene.method: this method is not implemented yet (available: fem, pfem, es_pfem, mpm)");

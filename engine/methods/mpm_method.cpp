@@ -21,6 +21,7 @@
 #include "systems/locate/activate_grid.hpp"
 #include "systems/locate/contact_flags.hpp"
 #include "systems/update/commit_particle_newmark.hpp"
+#include "systems/update/coupled_fem.hpp"
 #include "systems/locate/locate_points.hpp"
 #include "systems/map/interpolate_to_particles.hpp"
 #include "systems/map/project_to_grid.hpp"
@@ -32,8 +33,8 @@ MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
   ctx_.scene = &scene_;
   // A static model must hold the active grid's rigid motions; a point probe must start in the body.
   check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
-  if (scene_.bodies[0].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
-    const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
+  if (scene_.bodies[std::size_t(mpm_body_index(scene_))].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
+    const MeshData body_mesh = generate_body_mesh(scene_.bodies[std::size_t(mpm_body_index(scene_))].mesh);
     check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
   }
   probe_plan_ = plan_particle_probes(scene_);
@@ -60,6 +61,8 @@ void MpmRun::name_stores(StepGraph& g) {
   g.name_store(&m_.outside_node, "outside_nodes");
   g.name_store(&m_.wall_sides, "wall_sides");
   g.name_store(&m_.probe_particle, "probe_particles");
+  g.name_store(&m_.reset, "reset_field");
+  g.name_store(&m_.coupled_mesh.fem_node, "fem_nodes");
   g.name_store(&status_, "step_status");
   g.name_store(&probe_writer_, "probes.csv");
   g.name_store(&writer_, "vtk_writer");
@@ -111,6 +114,7 @@ void MpmRun::build_particle_newmark_graph() {
   graph_ = std::make_unique<StepGraph>("mpm (particle Newmark)", ctx_, timers_);
   StepGraph& g = *graph_;
   name_stores(g);
+  if (m_.coupled) g.add_system("reset_grid", &reset_grid, m_.reset, m_.coupled_mesh.fem_node, m_.grid_nodes);
   g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
   g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
   g.add_system("flag_soft_cells", &flag_soft_cells, m_.grid, m_.outside_node, m_.activity);
@@ -123,6 +127,10 @@ void MpmRun::build_particle_newmark_graph() {
              [this] { newton_node(); }, "assemble -> solve -> update until converged (particles as quadrature points, consistent particle mass)");
   const auto commit = g.add_system("commit_particle_newmark", &commit_particle_newmark, m_.grid, m_.grid_nodes, m_.particle_loc, m_.particles);
   g.run_if(commit, &status_, [this] { return status_.converged; });
+  if (m_.coupled) {
+    const auto fem = g.add_system("commit_fem_nodes", &commit_fem_nodes, m_.coupled_mesh.fem_node, m_.grid_nodes);
+    g.run_if(fem, &status_, [this] { return status_.converged; });
+  }
   const auto follow = g.add_system("follow_particles", &follow_particles, m_.probe_particle, m_.particles, m_.probe_points);
   g.run_if(follow, &status_, [this] { return status_.converged; });
   add_output_nodes(g);
@@ -198,8 +206,12 @@ void MpmRun::output_node() {
 }
 
 void MpmRun::describe(std::ostream& os) const {
-  const BodySpec& body = scene_.bodies[0];
-  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method mpm, element " << formulation_name(body.element);
+  const BodySpec& body = scene_.bodies[std::size_t(mpm_body_index(scene_))];
+  os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method " << method_name(scene_.scene.method) << ", element "
+     << formulation_name(body.element);
+  if (m_.coupled)
+    os << ", " << m_.grid.size() - m_.coupled_mesh.grid_cells << " FEM quad9 cells sharing the grid's nodes (reset field: " << m_.reset.held_dof.size()
+       << " held dofs)";
   if (m_.mixed) {
     const char* names[] = {"none", "ppp", "asgs", "osgs"};
     os << ", stabilisation " << names[int(body.stabilisation)];

@@ -93,7 +93,9 @@ void MpmModel::build_particle_newmark_data() {
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k)
     if (scene.boundaries[k].outside)
       for (Index i : bc.boundary_nodes[k]) outside_node[std::size_t(i)] = 1;
-  wall_sides = find_wall_sides(grid, bc, grid_nodes.size());
+  if (coupled)  // the FEM nodes lower the flags of the grid cells they touch (spec A13)
+    for (std::size_t i = 0; i < outside_node.size(); ++i) outside_node[i] |= coupled_mesh.fem_node[i];
+  wall_sides = find_wall_sides(grid, bc, grid_nodes.size(), coupled ? &coupled_mesh.interface_node : nullptr);
   probe_particle.clear();
   for (const auto& p : scene.probes) {
     if (p.kind != ProbeKind::point) continue;
@@ -106,18 +108,48 @@ void MpmModel::build_particle_newmark_data() {
   for (std::size_t k = 0; k < probe_particle.size(); ++k) probe_points.X[Index(k)] = particles.X[probe_particle[k]];
 }
 
+// Method mpm_fem: the grid and the FEM bodies' rectangles, refined alike, as one mesh with shared nodes.
+void MpmModel::build_coupled_model_grid() {
+  const MeshSpec& gm = scene.grid.mesh;
+  const RectangleSpec rect = rectangle_of(gm);
+  std::vector<FemBlock> blocks;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& fb = scene.bodies[b];
+    if (fb.element != Formulation::quad9) continue;
+    const RectangleSpec r = rectangle_of(fb.mesh);
+    blocks.push_back({GradedRectangle{r.origin, r.size, r.nx, r.ny, Vec2::Ones(), scene.grid.refinements}, Index(b), fb.name});
+  }
+  try {
+    coupled_mesh = build_coupled_grid(GradedRectangle{rect.origin, rect.size, rect.nx, rect.ny, scene.grid.grading, scene.grid.refinements},
+                                      blocks, Formulation::p1, grid_nodes, grid, layout);
+  } catch (const InputError& e) {  // name the FEM body's mesh (the message names the body)
+    const std::string what = e.what();
+    for (const FemBlock& b : blocks)
+      if (what.find("\"" + b.name + "\"") != std::string::npos) {
+        std::ostringstream os;
+        os << scene.bodies[std::size_t(b.body)].mesh.where << ": error: body[" << b.body << "].mesh: " << what;
+        throw InputError(os.str());
+      }
+    throw;
+  }
+  layout.moves = true;
+  activity.always_active_from = coupled_mesh.grid_cells;
+}
+
 MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   check_memory(scene);
-  const BodySpec& body = scene.bodies.at(0);
+  const BodySpec& body = scene.bodies.at(std::size_t(mpm_body_index(scene)));
+  coupled = scene.scene.method == Method::mpm_fem;
   dynamic = scene.time.integrator == Integrator::newmark;
   mixed = body.element == Formulation::p1p1_up;
   osgs = mixed && body.stabilisation == Stabilisation::osgs;
   particle_newmark = scene.mpm.scheme == MpmScheme::particle_newmark;
 
   // 1. Columns the scene needs.
-  grid_nodes.u_n.use(false);  // the grid starts every step undeformed: u is the step's displacement
+  grid_nodes.u_n.use(coupled);  // the grid starts every step undeformed (mpm_fem: at its reference): u is the step's displacement
   grid_nodes.lumped_mass.use(!particle_newmark);  // particle Newmark: the grid carries no mass, velocity or acceleration
   for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic && !particle_newmark);
+  if (coupled) grid_nodes.v.use(), grid_nodes.a.use();  // the FEM nodes' Newmark state
   grid_nodes.p.use(mixed);
   grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs), grid_nodes.lumped_volume.use(osgs);
   for (auto* c : {&particles.X, &particles.u}) c->use();
@@ -138,7 +170,8 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   const MeshSpec& gm = scene.grid.mesh;
   const RectangleSpec rect = rectangle_of(gm);
   const bool structured = gm.generator == MeshGenerator::rectangle && gm.distortion == 0.0;
-  try {
+  if (coupled) build_coupled_model_grid();
+  else try {
     if (scene.grid.quad9) build_quad9_grid(GradedRectangle{rect.origin, rect.size, rect.nx, rect.ny, scene.grid.grading, scene.grid.refinements},
                                            body.element, grid_nodes, grid, layout);
     else if (scene.grid.quad4) build_quad_grid(rect, body.element, grid_nodes, grid, layout);
@@ -158,6 +191,7 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   probe_points.resize(Index(tracers.size()));
   for (Index k = 0; k < probe_points.X.size(); ++k) probe_points.X[k] = tracers[std::size_t(k)];
   build_grid_conditions(scene, grid_nodes, layout, bc);
+  if (coupled) build_reset_field(grid, coupled_mesh.grid_cells, grid_nodes, coupled_mesh.fem_node, bc, reset);
   bc.increments = true;
   bc.target = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
   bc.external = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
@@ -180,7 +214,8 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
     std::ostringstream os;
     if (body.particles.kind != ParticleGenerator::none)
       os << body.particles.where << ": error: body[0].particles: the generated " << (body.particles.kind == ParticleGenerator::disk ? "disk" : "beam")
-         << " does not fit in the background grid: " << e.what();
+         << " does not fit in the background grid" << (coupled ? " (method mpm_fem: an MPM body lies inside the grid, outside the FEM bodies)" : "")
+         << ": " << e.what();
     else os << gm.where << ": error: grid: the body does not fit in the background grid at t = 0: " << e.what();
     throw InputError(os.str());
   }

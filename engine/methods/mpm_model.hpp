@@ -9,6 +9,7 @@
 
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/linalg/linear_system.hpp"
+#include "engine/mesh/coupled_grid.hpp"
 #include "engine/scene/scene_spec.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
@@ -18,6 +19,7 @@
 #include "engine/store/point_locations.hpp"
 #include "engine/store/points.hpp"
 #include "systems/assemble/materials/material.hpp"
+#include "systems/update/coupled_fem.hpp"
 
 namespace loom {
 
@@ -49,6 +51,12 @@ struct MpmModel {
   std::vector<unsigned char> wall_sides;
   std::vector<Index> probe_particle;
 
+  // Method mpm_fem (seed 004 §4): the FEM bodies' cells follow the grid's in `grid` and share its nodes; the grid
+  // moves with the reset field (systems/update/coupled_fem.hpp).
+  bool coupled = false;
+  CoupledMesh coupled_mesh;
+  ResetField reset;
+
   bool dynamic = false;  // newmark
   bool particle_newmark = false;  // mpm.scheme
   bool mixed = false;    // p1p1_up: three dofs per grid node
@@ -57,6 +65,7 @@ struct MpmModel {
 
  private:
   void build_particle_newmark_data();
+  void build_coupled_model_grid();
 };
 
 }  // namespace loom

@@ -3,7 +3,7 @@
 namespace loom {
 
 void check_method_support(const SceneSpec& s, const TableReader& root, Diagnostics& diag) {
-  const bool mpm = s.scene.method == Method::mpm;
+  const bool mpm = is_mpm(s.scene.method);
   const auto time = root.table("time"), grid = root.table("grid");
   const auto bodies = root.array("body"), boundaries = root.array("boundary"), probes = root.array("probe");
   const auto materials = root.array("material");
@@ -21,14 +21,31 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
       if (s.probes[k].kind == ProbeKind::energy) probes[k].error("kind", "energy probes are implemented by method = \"mpm\"");
     return;
   }
-  if (!grid.present()) root.table("scene").error("method", "method = \"mpm\" needs a background grid: add a [grid] table");
+  if (!grid.present()) root.table("scene").error("method", std::string("method = \"") + method_name(s.scene.method) + "\" needs a background grid: add a [grid] table");
   if (s.time.integrator == Integrator::euler_backward || s.time.integrator == Integrator::bossak)
     time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
   if (s.solver.tangent == TangentUpdate::once_per_step) root.table("solver").error("tangent", "method mpm assembles its tangent at every iteration");
   if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass (seed 003 §5)");
-  if (s.bodies.size() > 1) bodies[1].error("", "method mpm supports one body for now");
+  const bool coupled = s.scene.method == Method::mpm_fem;
+  if (coupled) {
+    // One MPM body (particles) and one or more FEM bodies (quad9 rectangles sharing the grid's nodes).
+    std::size_t n_mpm = 0, n_fem = 0;
+    for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
+      const bool fem = s.bodies[b].element == Formulation::quad9;
+      if (!fem && ++n_mpm > 1) bodies[b].error("", "method mpm_fem couples one MPM body (this is the second without element = \"quad9\") to FEM bodies");
+      n_fem += fem;
+    }
+    if (n_mpm == 0) root.error("body", "method mpm_fem needs an MPM body: a body with particles (or a mesh to sample), not element = \"quad9\"");
+    if (n_fem == 0) root.error("body", "method mpm_fem needs an FEM body: a body with element = \"quad9\" and a rectangle mesh beside the grid");
+    if (grid.present() && !s.grid.quad9) grid.error("cells", "method mpm_fem couples FEM quad9 cells to a quad9 grid: cells = \"quad9\"");
+    if (s.time.initial_acceleration == InitialAcceleration::equilibrium)
+      time.error("initial_acceleration", "method mpm_fem starts from a_0 = 0 at the particles and the FEM nodes (zero)");
+  } else if (s.bodies.size() > 1) {
+    bodies[1].error("", "method mpm supports one body (method mpm_fem couples one to FEM bodies)");
+  }
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
     const auto e = s.bodies[b].element;
+    if (coupled && e == Formulation::quad9) continue;
     if (e != Formulation::p1 && e != Formulation::p1p1_up)
       bodies[b].error("element", "method mpm takes element = \"p1\" (displacement) or \"p1p1_up\" (mixed, seed 003)");
     const Index m = s.bodies[b].material;

@@ -57,12 +57,15 @@ void read_particle_generator(const TableReader& body, BodySpec& b) {
 void read_mpm_options(SceneSpec& s, const TableReader& root) {
   const auto t = root.table("mpm"), grid = root.table("grid"), time = root.table("time");
   const auto bodies = root.array("body"), boundaries = root.array("boundary");
-  const bool mpm = s.scene.method == Method::mpm;
+  const bool mpm = is_mpm(s.scene.method);
   if (t.present() && !mpm) root.error("mpm", "[mpm] is used by method = \"mpm\" only");
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
     if (s.bodies[b].particles.kind != ParticleGenerator::none && !mpm) bodies[b].error("particles", "generated particles are used by method = \"mpm\" only");
   MpmSpec& m = s.mpm;
-  m.scheme = t.string("scheme") == "particle_newmark" ? MpmScheme::particle_newmark : MpmScheme::grid_newmark;
+  const bool coupled = s.scene.method == Method::mpm_fem;  // Newmark at the particles, as the FEM nodes have it
+  m.scheme = t.string("scheme") == "particle_newmark" || (coupled && !t.has("scheme")) ? MpmScheme::particle_newmark : MpmScheme::grid_newmark;
+  if (coupled && m.scheme != MpmScheme::particle_newmark)
+    t.error("scheme", "method mpm_fem runs scheme = \"particle_newmark\" (the coupling of [Aulisa 2019] §4 keeps v, a at the particles)");
   const auto soft = t.table("soft_stiffness");
   m.soft_c1 = soft.real("c1"), m.soft_c2 = soft.real("c2");
   m.receding_contact = t.real("receding_contact");
@@ -98,7 +101,7 @@ void read_mpm_options(SceneSpec& s, const TableReader& root) {
     time.error(time.has("beta") ? "beta" : "gamma", os.str());
   }
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
-    if (s.bodies[b].element != Formulation::p1)
+    if (s.bodies[b].element != Formulation::p1 && !(coupled && s.bodies[b].element == Formulation::quad9))
       bodies[b].error("element", "scheme = \"particle_newmark\" is a displacement formulation: element = \"p1\" (it names the grid's "
                                  "displacement interpolation, whatever the cells)");
   if (s.grid.present && !s.grid.quad4 && !s.grid.quad9)

@@ -58,7 +58,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       break;
     }
     case ProbeKind::stress:
-      if (s.scene.method == Method::mpm) t.error("kind", "kind = \"stress\" reads the cells of fem and pfem meshes; method mpm has none");
+      if (is_mpm(s.scene.method)) t.error("kind", "kind = \"stress\" reads the cells of fem and pfem meshes; method mpm has none");
       [[fallthrough]];
     case ProbeKind::point: {
       needs("component"), unused("boundary");
@@ -67,7 +67,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       if (t.has("at") && t.has("group")) t.error("group", "give either at or group, not both");
       p.at = t.vec2("at");
       p.group = t.string("group");
-      if (t.has("group") && s.scene.method == Method::mpm) t.error("group", "method mpm starts its tracer points at coordinates: give at");
+      if (t.has("group") && is_mpm(s.scene.method)) t.error("group", "method mpm starts its tracer points at coordinates: give at");
       if (t.has("body")) {
         const std::string body = t.string("body");
         p.body = find_by_name(s.bodies, body);
@@ -101,7 +101,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       break;
     case ProbeKind::speed:
     case ProbeKind::mass:
-      if (s.scene.method == Method::mpm) t.error("kind", "kind = \"" + kind + "\" reads the nodes and cells of fem, pfem and es_pfem meshes");
+      if (is_mpm(s.scene.method)) t.error("kind", "kind = \"" + kind + "\" reads the nodes and cells of fem, pfem and es_pfem meshes");
       if (p.kind == ProbeKind::speed && s.time.integrator == Integrator::static_)
         t.error("kind", "kind = \"speed\" reads nodal velocities: it needs a dynamic time.integrator");
       [[fallthrough]];

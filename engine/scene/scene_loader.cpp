@@ -89,8 +89,6 @@ class Loader {
     const std::string m = t.string("method");
     s.scene.method = pick<Method>(m, {{"fem", Method::fem}, {"pfem", Method::pfem}, {"es_pfem", Method::es_pfem},
                                       {"mpm", Method::mpm}, {"mpm_fem", Method::mpm_fem}});
-    if (s.scene.method == Method::mpm_fem)
-      t.error("method", "method \"" + m + "\" is not implemented yet (available: fem, pfem, es_pfem, mpm)");
     s.scene.dimension = int(t.integer("dimension"));
     s.scene.units = t.string("units");
     s.scene.description = t.string("description");
@@ -182,9 +180,12 @@ class Loader {
   // quad9 is an element of method fem on generated quadrilaterals (PFEM remeshes triangles; the MPM grids
   // take their cell type from [grid]; gmsh quadrilaterals are not read yet).
   void check_quad9_body(SceneSpec& s, const TableReader& t, BodySpec& b) {
-    if (s.scene.method != Method::fem)
+    if (s.scene.method == Method::mpm_fem) {  // an FEM body of the coupled method: a rectangle beside the grid
+      if (b.mesh.generator != MeshGenerator::rectangle)
+        t.table("mesh").error("generator", "an FEM body of method mpm_fem is a rectangle of quad9 cells beside the grid (generator = \"rectangle\")");
+    } else if (s.scene.method != Method::fem)
       t.error("element", std::string("quad9 is an element of method = \"fem\" (method ") + method_name(s.scene.method) +
-                             (s.scene.method == Method::mpm ? ": a quad9 background grid is grid.cells = \"quad9\")" : ")"));
+                             (is_mpm(s.scene.method) ? ": a quad9 background grid is grid.cells = \"quad9\")" : ")"));
     const auto mesh = t.table("mesh");
     if (b.mesh.generator == MeshGenerator::file)
       mesh.error("file", "element quad9 needs a generated mesh (generator = \"rectangle\" or \"cooks_membrane\"); mesh files are read as triangles");
@@ -228,6 +229,10 @@ class Loader {
     read_particle_generator(t, b);
     if (b.particles.kind == ParticleGenerator::none) read_mesh(t.table("mesh"), b.mesh);
     if (b.element == Formulation::quad9) check_quad9_body(s, t, b);
+    const std::string inertia = t.string("inertia");
+    b.unit_inertia = inertia == "unit_density";
+    if (t.has("inertia") && !(s.scene.method == Method::mpm_fem && b.element == Formulation::quad9))
+      t.error("inertia", "inertia chooses the density of an FEM body's inertia in method mpm_fem (element = \"quad9\")");
     b.body_force = read_vector(t.table("body_force"), diag_);
     warn_if_locking(s, t, b);
     s.bodies.push_back(b);
@@ -245,7 +250,7 @@ class Loader {
     os << (t.has("element") ? t.where("element") : t.where()) << ": warning: body[" << s.bodies.size() << "].element: p1 (linear "
        << "displacement triangles) locks for nearly incompressible materials, and material \"" << m.name << "\" has nu = " << m.nu
        << " > 0.49: displacements come out too small (73 % on Cook's membrane at nu = 0.4999). Use element = "
-       << (s.scene.method == Method::mpm ? "\"p1p1_up\" (mixed u-p, with model = \"neo_hooke_split\")"
+       << (is_mpm(s.scene.method) ? "\"p1p1_up\" (mixed u-p, with model = \"neo_hooke_split\")"
                                          : "\"p1p1_uphi\" (mixed u-phi, model neo_hooke) or \"tri6\" (quadratic)");
     s.warnings.push_back(os.str());
   }
@@ -277,14 +282,14 @@ class Loader {
       const std::string body = t.string("body");
       b.body = find_by_name(s.bodies, body);
       if (b.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
-    } else if (s.bodies.size() > 1) {
+    } else if (s.bodies.size() > 1 && s.scene.method != Method::mpm_fem) {  // mpm_fem: the nodes of grid and FEM bodies in the box
       t.error("", "missing key body (the scene has several bodies)");
     }
     const auto region = t.table("region");
     b.group = region.string("group");
     b.region_where = region.where(region.has("group") ? "group" : "box");
     if (region.present() && region.has("box") == region.has("group")) region.error("", "give either box or group");
-    if (region.has("group") && s.scene.method == Method::mpm)
+    if (region.has("group") && is_mpm(s.scene.method))
       region.error("group", "method mpm selects grid nodes and loaded edges by box; physical groups select mesh nodes of fem and pfem bodies");
     if (region.has("group") && b.body != kNoIndex && std::size_t(b.body) < s.bodies.size() &&
         s.bodies[std::size_t(b.body)].mesh.generator != MeshGenerator::file)

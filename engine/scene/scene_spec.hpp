@@ -22,6 +22,8 @@ inline const char* method_name(Method m) {
   constexpr const char* names[] = {"fem", "pfem", "es_pfem", "mpm", "mpm_fem"};
   return names[int(m)];
 }
+// The methods run by the mpm recipe: the background grid with material points, alone or coupled to FEM bodies.
+inline bool is_mpm(Method m) { return m == Method::mpm || m == Method::mpm_fem; }
 enum class Integrator { static_, euler_backward, newmark, bossak };
 enum class InitialAcceleration { zero, equilibrium };
 enum class Stabilisation { none, ppp, asgs, osgs };
@@ -138,6 +140,9 @@ struct BodySpec {
   Stabilisation stabilisation = Stabilisation::asgs;  // p1p1_up
   double tau_c1 = 1.0, tau_c2 = 1.0;  // eq 21: tau1 = c1 h^2 / (2 mu), tau2 = 2 c2 mu
   ParticleGeneratorSpec particles;  // instead of particles_per_cell in a body mesh (seed 004 Appendix A)
+  // Method mpm_fem, an FEM body (element quad9): its inertia with unit density instead of the material's, as
+  // seed 004's eq 41 and its authors' code have it (the published plates are nearly massless, spec A3).
+  bool unit_inertia = false;
   SourceRef where;
 };
 
@@ -265,5 +270,12 @@ struct SceneSpec {
   // the program; the run goes on.
   std::vector<std::string> warnings;
 };
+
+// Method mpm, mpm_fem: the body of material points (mpm_fem's other bodies are FEM bodies, element quad9).
+inline Index mpm_body_index(const SceneSpec& s) {
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    if (s.bodies[b].element != Formulation::quad9) return Index(b);
+  return 0;
+}
 
 }  // namespace loom

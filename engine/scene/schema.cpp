@@ -17,8 +17,9 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("scene.name", K::string, "Name of the scene; names the .pvd file and the default output directory.").require());
   s.push_back(key("scene.method", K::choice,
                   "Method (recipe) that runs the scene: fem (updated-Lagrangian finite elements on a fixed mesh), pfem (remeshing "
-                  "every step, [Schewe 2024] §3), es_pfem (the edge-based smoothed elements remeshed every step, [Reinold 2021]) or mpm (implicit mixed material point method, [Moreno et al.]); mpm_fem ([Aulisa 2019]) is "
-                  "planned.")
+                  "every step, [Schewe 2024] §3), es_pfem (the edge-based smoothed elements remeshed every step, [Reinold 2021]) or mpm (implicit mixed material point method, [Moreno et al.]; with "
+                  "mpm.scheme = \"particle_newmark\", [Aulisa 2019]'s implicit MPM); mpm_fem: that MPM on a quad9 grid coupled "
+                  "monolithically to FEM bodies whose quad9 cells share the grid's nodes ([Aulisa 2019] §4).")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
@@ -107,7 +108,9 @@ std::vector<KeySpec> build_schema() {
                   "triangles ([Reinold 2021] §3), mixed displacement / nodal pressure with PPP (alpha_stab) or displacement only; fem_up, "
                   "fem_u: the same integrated per triangle; all four with model hencky_perzyna or linear_elastic (geometrically linear). "
                   "quad9 (method fem): biquadratic displacement quadrilateral, 3 x 3 Gauss points ([Aulisa 2019] §2.2), on the "
-                  "quadrilaterals of a generated mesh (rectangle, cooks_membrane; no pattern).")
+                  "quadrilaterals of a generated mesh (rectangle, cooks_membrane; no pattern); method mpm_fem: an FEM body, a rectangle "
+                  "of quad9 cells (total Lagrangian, Newmark with consistent mass) outside the grid and sharing the grid's nodes along "
+                  "a common side; it is refined grid.refinements times like the grid.")
                   .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u", "quad9"}).by_default("p1"));
   s.push_back(key("body[].alpha_stab", K::real,
                   "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "
@@ -134,6 +137,11 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].mesh", K::table,
                   "The body's mesh: a generator and its parameters, or a mesh file (method mpm: the mesh the particles are generated in).")
                   .require_unless("particles"));
+  s.push_back(key("body[].inertia", K::choice,
+                  "Method mpm_fem, an FEM body: the density of its inertia term. physical: rho_0 u'' with the material's density; "
+                  "unit_density: u'' with density one, as [Aulisa 2019] eq 41 and its authors' code have it (their plates are nearly "
+                  "massless). Its weight uses the material's density either way.")
+                  .one_of({"physical", "unit_density"}).by_default("physical"));
   s.push_back(key("body[].particles", K::table,
                   "Method mpm, instead of a mesh: the particle sets of [Aulisa 2019] Appendix A, a uniform core with boundary layers "
                   "refined towards the surface, each particle with its own mass."));

@@ -9,7 +9,7 @@ void read_wall(SceneSpec& s, const TableReader& t) {
   w.name = read_name(t);
   w.where = t.where();
   if (find_by_name(s.walls, w.name) != kNoIndex) t.error("name", "a wall named \"" + w.name + "\" already exists");
-  if (s.scene.method == Method::mpm)
+  if (is_mpm(s.scene.method))
     t.error("", "[[wall]] acts on mesh nodes (methods fem, pfem, es_pfem); method mpm's walls are grid boundaries with a displacement");
   const bool plane = t.has("point") || t.has("normal");
   if (plane && t.has("box")) t.error("box", "give either point and normal (a plane) or box, not both");

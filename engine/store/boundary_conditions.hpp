@@ -47,6 +47,7 @@ struct BoundaryConditions {
   // carries the traction expressions of its edge (weight: its share of the edge's reference length).
   std::vector<std::array<Index, D>> traction_point_expression;
   std::vector<Vec<D>> particle_body_force;  // per particle, at the step time: b per unit mass
+  std::vector<Vec<D>> fem_body_force;  // method mpm_fem: per Gauss point of the FEM cells (9 per cell, in cell order), b per unit mass
   bool increments = false;  // mpm: `target` holds the step's increment of prescribed displacements
 
   std::vector<std::string> boundary_names;              // the scene's [[boundary]] names, in order

@@ -19,6 +19,9 @@ struct GridActivity {
   std::vector<Index> active_index;  // per grid cell: its position in active_cells (the scatter entry), or kNoIndex
   std::vector<Index> active_by_colour;  // active cells grouped by the grid's colours
   std::vector<Index> colour_offsets;    // n_colours + 1 into active_by_colour
+  // Method mpm_fem: cells from this index on are FEM cells (seed 004 §4), active whether or not they hold
+  // particles; kNoIndex: none.
+  Index always_active_from = kNoIndex;
   std::uint64_t version = 0;  // incremented whenever the active set changes
   int rebuilds = 0;           // times the dof numbering and pattern were rebuilt
 

@@ -20,6 +20,9 @@ struct GridLayout {
   // Graded rectangles of quad9 cells: the cell edges along x (nx + 1 values) and y (ny + 1), ascending;
   // cell k = j nx + i spans [x_lines[i], x_lines[i+1]] x [y_lines[j], y_lines[j+1]] (binary search).
   std::vector<double> x_lines, y_lines;
+  // Method mpm_fem: the grid's nodes move with the reset field (seed 004 eq 8), so the lines only guess the
+  // cell, and a point off the undeformed rectangle may still be inside the moved grid.
+  bool moves = false;
 
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  // bounding box of the grid
   double tolerance = 0.0;  // distance outside a cell still accepted as inside it (round-off on shared edges)

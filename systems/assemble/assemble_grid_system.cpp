@@ -103,7 +103,7 @@ template <int NC, int PN>
 void assemble_ghost(const Args& x) {
   const SceneSpec& scene = *x.ctx.scene;
   const double gamma_0 = scene.grid.ghost_penalty;
-  const double mu = scene.materials[std::size_t(scene.bodies[0].material)].mu;
+  const double mu = scene.materials[std::size_t(scene.bodies[std::size_t(mpm_body_index(scene))].material)].mu;
   const Cells& faces = x.act.ghost_faces;
   constexpr int NE = PN * kGhostFaceNodes<NC>;
   for (std::size_t k = 0; k + 1 < faces.colour_offsets.size(); ++k)

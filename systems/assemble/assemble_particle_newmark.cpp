@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "engine/mesh/grid_point_shape.hpp"
+#include "engine/mesh/quad9_shape.hpp"
 #include "systems/assemble/elements/particle_newmark_point.hpp"
 #include "systems/assemble/elements/receding_contact.hpp"
 #include "systems/assemble/elements/soft_stiffness.hpp"
@@ -20,6 +21,42 @@ Eigen::Matrix<double, NEN, 2> particle_trial_gradients(const Eigen::Matrix<doubl
 
 namespace {
 
+// An FEM cell of method mpm_fem (seed 004 eqs 38-43, total Lagrangian on the undeformed cell, X^ = X - u_n):
+// each 3 x 3 Gauss point is a particle of the step's reference configuration X~ = X^ + u_n, with
+// F_n = dX~/dX^, volume V_0 = w det J^, inertia mass rho_i V_0 and the nodal Newmark state interpolated (the
+// rule is linear in it, so the nodal accelerations interpolate to the point's): the particle kernel then gives
+// the consistent mass rho_i int N_A N_B and the stress term int P : grad^ N_A. rho_i is the material's density
+// or one (the paper's eq 41, `inertia = "unit_density"`); the body force is rho b either way.
+template <class MaterialT>
+bool add_fem_cell(const MaterialT& material, const ParticleNewmark& tn, const Nodes<2>& g, const Cells& grid, Index c, double rho_inertia,
+                  double rho, const Vec2* body_force, const NodalVectors<9>& du, ElementVector<9>& r, ElementMatrix<9>& K, bool tangent) {
+  Quad9Coordinates X, X0;
+  for (int a = 0; a < 9; ++a) {
+    const Index i = grid.node(c, a);
+    X.row(a) = g.X[i].transpose();
+    X0.row(a) = (g.X[i] - g.u_n[i]).transpose();
+  }
+  const Quad9Gauss& rule = quad9_gauss();
+  for (std::size_t q = 0; q < 9; ++q) {
+    double det0 = 0.0;
+    const Quad9Gradients dN0 = quad9_gradients(X0, rule.xi[q], &det0);
+    ParticlePoint<9> pt;
+    pt.N = quad9_shape(rule.xi[q]);
+    pt.dN = quad9_gradients(X, rule.xi[q]);
+    pt.dN_trial = pt.dN;
+    pt.V0 = rule.weight[q] * det0;
+    pt.mass = rho_inertia * pt.V0;
+    const Eigen::Matrix2d Fn = X.transpose() * dN0;  // dX~/dX^
+    pt.F_n.topLeftCorner<2, 2>() = Fn;
+    pt.v_n.setZero(), pt.a_n.setZero();
+    for (int a = 0; a < 9; ++a) pt.v_n += pt.N[a] * g.v[grid.node(c, a)], pt.a_n += pt.N[a] * g.a[grid.node(c, a)];
+    pt.b = body_force ? Vec2(body_force[q] * (rho / rho_inertia)) : Vec2::Zero();
+    Mat3 F;
+    if (!add_particle_newmark_point<9>(material, tn, pt, du, F, r, tangent ? &K : nullptr)) return false;
+  }
+  return true;
+}
+
 template <int NEN>
 void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<BodyMaterial>& materials, const Cells& grid,
                     const GridActivity& act, const Nodes<2>& g, const Points<2>& particles, const BoundaryConditions<2>& bc,
@@ -29,7 +66,8 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
   const SoftStiffness soft{scene.mpm.soft_c1, scene.mpm.soft_c2};
   const double c_c = scene.mpm.receding_contact;
   const bool receding = c_c > 0.0 && loc.receding.used();
-  const double mu = scene.materials[std::size_t(scene.bodies[0].material)].mu;
+  const double mu = scene.materials[std::size_t(scene.bodies[std::size_t(mpm_body_index(scene))].material)].mu;
+  const Index fem_from = act.always_active_from;
   // About 64 particles' work per task: cells of a fine body hold tens to thousands of them.
   const Index grain = std::max<Index>(1, 64 * act.n_active_cells() / std::max<Index>(1, particles.X.size()));
   for_each_active_cell_by_colour(act, [&](Index c) {
@@ -38,6 +76,19 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
     for (int a = 0; a < NEN; ++a) du.row(a) = g.u[grid.node(c, a)].transpose();
     ElementVector<NEN> r = ElementVector<NEN>::Zero();
     ElementMatrix<NEN> K = ElementMatrix<NEN>::Zero();
+    if constexpr (NEN == 9) {
+      if (fem_from != kNoIndex && c >= fem_from) {
+        const Index b = grid.body[c];
+        const MaterialSpec& ms = scene.materials[std::size_t(scene.bodies[std::size_t(b)].material)];
+        const double rho_inertia = scene.bodies[std::size_t(b)].unit_inertia ? 1.0 : ms.density;
+        const Vec2* bf = bc.fem_body_force.empty() ? nullptr : &bc.fem_body_force[std::size_t(9 * (c - fem_from))];
+        const bool ok = std::visit([&](const auto& m) { return add_fem_cell(m, tn, g, grid, c, rho_inertia, ms.density, bf, du, r, K, tangent); },
+                                   materials[std::size_t(b)].model);
+        if (!ok) return void(inverted.fetch_add(1, std::memory_order_relaxed));
+        scatter_cell<2 * NEN>(entry, system.scatter[0], bc, g, tangent, r, K, system);
+        return;
+      }
+    }
     // 1. Soft stiffness (constant and linear: K du), on the flags of the step's active set.
     const double C = act.inside_nodes.empty() ? 0.0 : soft.factor(act.inside_nodes[std::size_t(entry)], NEN);
     if (C > 0.0) {

@@ -2,6 +2,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
+#include "engine/mesh/quad9_shape.hpp"
 #include "systems/locate/locate_points.hpp"
 #include "systems/map/project_to_grid.hpp"
 
@@ -31,6 +32,23 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
     for (int d = 0; d < 2; ++d)
       if (e[std::size_t(d)] != kNoIndex) b[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, particles.X[p].x(), particles.X[p].y());
     bc.particle_body_force[std::size_t(p)] = b;
+  }
+  // FEM cells of method mpm_fem: at their Gauss points in the undeformed body (X - u_n).
+  bc.fem_body_force.clear();
+  if (activity.always_active_from != kNoIndex) {
+    const Quad9Gauss& rule = quad9_gauss();
+    for (Index c = activity.always_active_from; c < grid.size(); ++c) {
+      const auto& e = bc.body_force[std::size_t(grid.body[c])];
+      for (std::size_t q = 0; q < 9; ++q) {
+        const Quad9Values N = quad9_shape(rule.xi[q]);
+        Vec2 X = Vec2::Zero();
+        for (int a = 0; a < 9; ++a) X += N[a] * (grid_nodes.X[grid.node(c, a)] - grid_nodes.u_n[grid.node(c, a)]);
+        Vec2 b = Vec2::Zero();
+        for (int d = 0; d < 2; ++d)
+          if (e[std::size_t(d)] != kNoIndex) b[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, X.x(), X.y());
+        bc.fem_body_force.push_back(b);
+      }
+    }
   }
   // Particle Newmark (seed 004) applies the body force at the particles in its kernel, and takes no tractions.
   if (ctx.scene && ctx.scene->mpm.scheme == MpmScheme::particle_newmark) return;

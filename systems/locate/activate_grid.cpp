@@ -7,10 +7,12 @@ namespace loom {
 void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocations& particle_loc, const BoundaryConditions<2>& bc,
                    GridActivity& activity, LinearSystem& system) {
   const Index n_cells = grid.size();
+  const Index fem_from = activity.always_active_from == kNoIndex ? n_cells : activity.always_active_from;
+  auto active = [&](Index c) { return c >= fem_from || particle_loc.count_in(c) > 0; };
   // 1. Has the active set changed?
   bool changed = activity.cell_active.size() != std::size_t(n_cells) || activity.version == 0;
   if (!changed)
-    for (Index c = 0; c < n_cells && !changed; ++c) changed = activity.cell_active[std::size_t(c)] != char(particle_loc.count_in(c) > 0);
+    for (Index c = 0; c < fem_from && !changed; ++c) changed = activity.cell_active[std::size_t(c)] != char(active(c));
   if (!changed) return;
 
   // 2. Active cells (ascending and by colour) and nodes.
@@ -20,7 +22,7 @@ void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocatio
   const Index n_nodes = Index(bc.target.size()) / bc.per_node;
   activity.node_active.assign(std::size_t(n_nodes), 0);
   for (Index c = 0; c < n_cells; ++c) {
-    if (particle_loc.count_in(c) == 0) continue;
+    if (!active(c)) continue;
     activity.cell_active[std::size_t(c)] = 1;
     activity.active_index[std::size_t(c)] = Index(activity.active_cells.size());
     activity.active_cells.push_back(c);

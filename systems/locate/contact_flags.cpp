@@ -4,7 +4,8 @@
 
 namespace loom {
 
-std::vector<unsigned char> find_wall_sides(const Cells& grid, const BoundaryConditions<2>& bc, Index n_nodes) {
+std::vector<unsigned char> find_wall_sides(const Cells& grid, const BoundaryConditions<2>& bc, Index n_nodes,
+                                           const std::vector<char>* interface_node) {
   std::vector<unsigned char> held(std::size_t(n_nodes), 0);  // bit d: component d prescribed
   for (const auto& p : bc.prescribed)
     if (p.dof % bc.per_node < 2) held[std::size_t(p.node)] |= (unsigned char)(1u << (p.dof % bc.per_node));
@@ -12,8 +13,12 @@ std::vector<unsigned char> find_wall_sides(const Cells& grid, const BoundaryCond
   if (grid.stride != 9) return walls;
   for (Index c = 0; c < grid.size(); ++c)
     for (int s = 0; s < 4; ++s) {
-      bool wall = true;
-      for (int a : {s, 4 + s, (s + 1) % 4}) wall = wall && held[std::size_t(grid.node(c, a))] == 3;
+      bool wall = true, shared = interface_node != nullptr;
+      for (int a : {s, 4 + s, (s + 1) % 4}) {
+        wall = wall && held[std::size_t(grid.node(c, a))] == 3;
+        shared = shared && (*interface_node)[std::size_t(grid.node(c, a))];
+      }
+      wall = wall || shared;
       if (wall) walls[std::size_t(c)] |= (unsigned char)(1u << s);
     }
   return walls;
@@ -43,7 +48,9 @@ void mark_receding_particles(const StepContext&, const Cells& grid, const Nodes<
       if (!(mask & (1u << s))) continue;
       // Inward normal: the cell lies to the left of its counter-clockwise side.
       const Vec2 d = g.X[grid.node(c, (s + 1) % 4)] - g.X[grid.node(c, s)];
-      const double away = particles.v[p].dot(Vec2(-d.y(), d.x())) / d.norm();
+      // Relative to the side's mid-node: a wall is at rest, an FEM body's face moves (seed 004 §5).
+      const Vec2 v = g.v.used() ? Vec2(particles.v[p] - g.v[grid.node(c, 4 + s)]) : particles.v[p];
+      const double away = v.dot(Vec2(-d.y(), d.x())) / d.norm();
       if (away > fastest) fastest = away, loc.receding[p] = s;
     }
   });

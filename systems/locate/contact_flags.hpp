@@ -20,7 +20,9 @@
 namespace loom {
 
 // Bit s of entry c: side s of quad9 cell c (corner s, mid-side 4 + s, corner s + 1) lies on a wall.
-std::vector<unsigned char> find_wall_sides(const Cells& grid, const BoundaryConditions<2>& bc, Index n_nodes);
+// interface_node (method mpm_fem): the sides whose three nodes are shared with an FEM body are walls too.
+std::vector<unsigned char> find_wall_sides(const Cells& grid, const BoundaryConditions<2>& bc, Index n_nodes,
+                                           const std::vector<char>* interface_node = nullptr);
 
 void flag_soft_cells(const StepContext& ctx, const Cells& grid, const std::vector<char>& outside_node, GridActivity& activity);
 

@@ -74,16 +74,27 @@ Index walk(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, c
 // Graded quad9 rectangle: the cell by a binary search along each axis, then xi by the inverse map.
 Index find_quad9(const GridLayout& layout, const Cells& grid, const Nodes<2>& nodes, const Vec2& x, Vec2& xi) {
   const double tol = layout.tolerance;
-  if (!(x.x() >= layout.lo.x() - tol && x.y() >= layout.lo.y() - tol && x.x() <= layout.hi.x() + tol && x.y() <= layout.hi.y() + tol))
+  if (!layout.moves &&
+      !(x.x() >= layout.lo.x() - tol && x.y() >= layout.lo.y() - tol && x.x() <= layout.hi.x() + tol && x.y() <= layout.hi.y() + tol))
     return kNoIndex;
   auto interval = [](const std::vector<double>& lines, double s) {
     const auto it = std::upper_bound(lines.begin() + 1, lines.end() - 1, s);
     return Index(it - lines.begin()) - 1;
   };
-  const Index c = interval(layout.y_lines, x.y()) * layout.nx + interval(layout.x_lines, x.x());
-  Quad9Coordinates X;
-  for (int a = 0; a < 9; ++a) X.row(a) = nodes.X[grid.node(c, a)].transpose();
-  return quad9_inverse_map(X, x, xi) ? c : kNoIndex;
+  Index i = interval(layout.x_lines, x.x()), j = interval(layout.y_lines, x.y());
+  // The lines are the undeformed grid's. A grid that moves with the reset field (method mpm_fem) is off them by a
+  // fraction of a cell near the FEM bodies (or by many cells, when the bodies translate): step to the neighbour the
+  // reference coordinates point to.
+  for (int hop = 0;; ++hop) {
+    const Index c = j * layout.nx + i;
+    Quad9Coordinates X;
+    for (int a = 0; a < 9; ++a) X.row(a) = nodes.X[grid.node(c, a)].transpose();
+    if (!quad9_inverse_map(X, x, xi)) return kNoIndex;
+    const int di = xi.x() > 1.0 + 1e-9 ? 1 : xi.x() < -1.0 - 1e-9 ? -1 : 0, dj = xi.y() > 1.0 + 1e-9 ? 1 : xi.y() < -1.0 - 1e-9 ? -1 : 0;
+    const Index ni = std::clamp<Index>(i + di, 0, layout.nx - 1), nj = std::clamp<Index>(j + dj, 0, layout.ny - 1);
+    if ((ni == i && nj == j) || hop == layout.nx + layout.ny) return !layout.moves || (di == 0 && dj == 0) ? c : kNoIndex;
+    i = ni, j = nj;
+  }
 }
 
 }  // namespace

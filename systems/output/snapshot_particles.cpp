@@ -71,9 +71,12 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   FrameArray mass{"mass", 1, std::vector<double>(n, 0.0)};
   for (std::size_t i = 0; i < n; ++i) {
     const Index node = Index(i);
-    frame.points[3 * i] = g.X[node].x(), frame.points[3 * i + 1] = g.X[node].y();
+    // Method mpm_fem: the undeformed grid and the whole displacement (reset or FEM, and the step's).
+    const Vec2 X = g.u_n.used() ? Vec2(g.X[node] - g.u_n[node]) : g.X[node];
+    const Vec2 u = g.u_n.used() ? Vec2(g.u_n[node] + g.u[node]) : g.u[node];
+    frame.points[3 * i] = X.x(), frame.points[3 * i + 1] = X.y();
     for (int d = 0; d < 2; ++d) {
-      displacement.values[3 * i + std::size_t(d)] = g.u[node][d];
+      displacement.values[3 * i + std::size_t(d)] = u[d];
       if (g.v.used()) velocity.values[3 * i + std::size_t(d)] = g.v[node][d];
     }
     if (g.p.used()) pressure.values[i] = -g.p[node], mean_stress.values[i] = g.p[node];

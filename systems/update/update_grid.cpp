@@ -15,7 +15,7 @@ void update_grid_iterate(const StepContext& ctx, double step, const LinearSystem
 }
 
 void update_grid_kinematics(const StepContext& ctx, Nodes<2>& g) {
-  if (!g.a.used()) return;
+  if (!g.a.used() || !g.lumped_mass.used()) return;  // particle Newmark: no grid kinematics (mpm_fem's FEM nodes update at commit)
   for_each_index(g.size(), [&](Index i) {
     if (!(g.lumped_mass[i] > 0.0)) return;
     g.a[i] = newmark_acceleration(g, i, ctx.dt);

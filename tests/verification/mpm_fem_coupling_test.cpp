@@ -1,0 +1,188 @@
+// Method mpm_fem (seed 004 §4): particle-Newmark MPM on a quad9 grid coupled monolithically to an FEM plate whose
+// quad9 cells share the grid's nodes (engine/mesh/coupled_grid, systems/update/coupled_fem).
+//  - the coupled mesh: the plate's nodes on the grid's side are the grid's (one interface row), the rest new;
+//  - the reset field (eq 8) carries a rigid motion of the FEM nodes (small rotation and translation, the linear
+//    fields with no symmetric gradient) over the whole grid exactly: they are its zero-energy fields, and quad9
+//    cells hold them (a linear field with a symmetric gradient would not be one: the free sides' natural condition
+//    (grad u + grad u^T) n = 0 bends it);
+//  - a disk and the plate falling together under gravity, nothing held: the plate's nodes, the grid that moves
+//    with it and every particle follow Newmark's closed form with a_0 = 0 (spec seed004 §3, check 1),
+//      u_n = g (t_n^2 / 2 - dt t_n / 2 + beta dt^2),  v_n = g (t_n - dt / 2)   (n >= 1),
+//    to round-off, with F = I: the FEM cells' consistent mass, their body force and the shared nodes carry a
+//    translation exactly;
+//  - a disk rolling on a plate a thousand times stiffer than itself rolls as on the rigid ground of method mpm
+//    (the same grid, particles and contact terms): the coupling adds only the plate's compliance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "engine/methods/mpm_model.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace loom {
+namespace {
+
+constexpr double kG = -9.81, kDt = 0.02, kBeta = 0.3;
+constexpr int kSteps = 25;
+
+// A disk in a 3 x 3 quad9 grid refined twice, a plate of 3 x 1 coarse cells under it.
+std::string falling_scene(bool gravity_on_plate) {
+  return std::string("[scene]\nname = \"coupled-fall\"\nmethod = \"mpm_fem\"\n"
+                     "[time]\nintegrator = \"newmark\"\ndt = 0.02\nsteps = 25\nbeta = 0.3\ngamma = 0.5\n"
+                     "[solver]\nresidual_relative = 1e-12\n"
+                     "[mpm]\nsoft_stiffness = { c1 = 0.1, c2 = 0.01 }\n"
+                     "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 4.2e6\nnu = 0.4\ndensity = 1000.0\n"
+                     "[[material]]\nname = \"p\"\nmodel = \"neo_hooke\"\nE = 8.4e6\nnu = 0.4\ndensity = 1000.0\n"
+                     "[[body]]\nname = \"disk\"\nmaterial = \"m\"\n"
+                     "particles = { generator = \"disk\", centre = [0.5, -0.2], radius = 0.5, core_radius = 0.4, n_theta = 40, factor = 1.3 }\n"
+                     "body_force = { y = -9.81 }\n"
+                     "[[body]]\nname = \"plate\"\nmaterial = \"p\"\nelement = \"quad9\"\n") +
+         (gravity_on_plate ? "body_force = { y = -9.81 }\n" : "") +
+         "mesh = { generator = \"rectangle\", origin = [-1.0, -2.5], size = [3.0, 0.5], divisions = [3, 1] }\n"
+         "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [-1.0, -2.0]\nsize = [3.0, 3.0]\ndivisions = [3, 3]\n"
+         "grading = [1.0, 0.8]\nrefinements = 2\n"
+         "[[probe]]\nname = \"uy\"\nkind = \"point\"\nat = [0.5, -0.2]\ncomponent = \"y\"\n"
+         "[output]\nevery = 0\n";
+}
+
+double u_factor(int n) {
+  const double t = n * kDt;
+  return n == 0 ? 0.0 : 0.5 * t * t - 0.5 * kDt * t + kBeta * kDt * kDt;
+}
+
+TEST(MpmFemCoupling, ThePlateSharesOneRowOfGridNodes) {
+  const MpmModel m(testing::scene_from_text(falling_scene(true)));
+  // Grid: 12 x 12 quad9 cells, 25 x 25 nodes; plate: 12 x 4 cells, 25 x 9 nodes, its top row the grid's bottom row.
+  EXPECT_EQ(m.coupled_mesh.grid_cells, 144);
+  EXPECT_EQ(m.grid.size(), 144 + 48);
+  EXPECT_EQ(m.grid_nodes.size(), 25 * 25 + 25 * 8);
+  Index interface = 0, fem = 0;
+  for (std::size_t i = 0; i < m.coupled_mesh.fem_node.size(); ++i) interface += m.coupled_mesh.interface_node[i], fem += m.coupled_mesh.fem_node[i];
+  EXPECT_EQ(interface, 25);
+  EXPECT_EQ(fem, 25 * 9);
+  for (std::size_t i = 0; i < m.coupled_mesh.interface_node.size(); ++i)
+    if (m.coupled_mesh.interface_node[i]) {
+      EXPECT_NEAR(m.grid_nodes.X[Index(i)].y(), -2.0, 1e-15);
+    }
+  // Every FEM cell is active from the start, with the grid cells that hold particles.
+  for (Index c = m.coupled_mesh.grid_cells; c < m.grid.size(); ++c) EXPECT_TRUE(m.activity.cell_active[std::size_t(c)]);
+}
+
+TEST(MpmFemCoupling, TheResetFieldCarriesARigidMotionOfThePlateOverTheGrid) {
+  MpmModel m(testing::scene_from_text(falling_scene(true)));
+  Eigen::Matrix2d A;
+  A << 0.0, -0.02, 0.02, 0.0;
+  const Vec2 b(0.03, -0.04);
+  std::vector<Vec2> X0(std::size_t(m.grid_nodes.size()));
+  for (Index i = 0; i < m.grid_nodes.size(); ++i) {
+    X0[std::size_t(i)] = m.grid_nodes.X[i];
+    if (!m.coupled_mesh.fem_node[std::size_t(i)]) continue;
+    m.grid_nodes.u_n[i] = A * X0[std::size_t(i)] + b;
+    m.grid_nodes.X[i] += m.grid_nodes.u_n[i];
+  }
+  StepContext ctx;
+  ctx.scene = &m.scene;
+  reset_grid(ctx, m.reset, m.coupled_mesh.fem_node, m.grid_nodes);
+  double worst = 0.0;
+  for (Index i = 0; i < m.grid_nodes.size(); ++i) {
+    const Vec2 u = A * X0[std::size_t(i)] + b;
+    worst = std::max({worst, (m.grid_nodes.u_n[i] - u).norm(), (m.grid_nodes.X[i] - X0[std::size_t(i)] - u).norm()});
+  }
+  EXPECT_LE(worst, 1e-13);
+  std::printf("[mpm_fem reset field] rigid motion over %d nodes: %.1e\n", int(m.grid_nodes.size()), worst);
+}
+
+TEST(MpmFemCoupling, DiskAndPlateFallTogetherAsNewmarksClosedForm) {
+  const SceneSpec scene = testing::scene_from_text(falling_scene(true));
+  testing::TempDir dir("mpm_fem_fall");
+  auto run = testing::make_mpm_run(scene, dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const MpmModel& m = run->model();
+  const double u = kG * u_factor(kSteps), v = kG * kDt * (kSteps - 0.5);
+  double worst_u = 0.0, worst_v = 0.0, worst_F = 0.0, worst_node = 0.0, worst_grid = 0.0;
+  for (Index p = 0; p < m.particles.X.size(); ++p) {
+    worst_u = std::max(worst_u, (m.particles.u[p] - Vec2(0.0, u)).norm() / std::abs(u));
+    worst_v = std::max(worst_v, (m.particles.v[p] - Vec2(0.0, v)).norm() / std::abs(v));
+    worst_F = std::max(worst_F, (m.particles.F[p] - Mat3::Identity()).norm());
+  }
+  for (Index i = 0; i < m.grid_nodes.size(); ++i) {
+    if (m.coupled_mesh.fem_node[std::size_t(i)])
+      worst_node = std::max({worst_node, (m.grid_nodes.u_n[i] - Vec2(0.0, u)).norm() / std::abs(u), (m.grid_nodes.v[i] - Vec2(0.0, v)).norm() / std::abs(v)});
+    else  // the grid moved with the plate at the start of the last step: the reset field is the plate's u^(n-1)
+      worst_grid = std::max(worst_grid, (m.grid_nodes.u_n[i] - Vec2(0.0, kG * u_factor(kSteps - 1))).norm() / std::abs(u));
+  }
+  const auto uy = testing::read_probes(dir.file("probes.csv")).column("uy");
+  double worst_probe = 0.0;
+  for (int n = 0; n <= kSteps; ++n) worst_probe = std::max(worst_probe, std::abs(uy[std::size_t(n)] - kG * u_factor(n)) / std::abs(u));
+  EXPECT_LE(worst_u, 1e-10);
+  EXPECT_LE(worst_v, 1e-10);
+  EXPECT_LE(worst_F, 1e-10);
+  EXPECT_LE(worst_node, 1e-10);
+  EXPECT_LE(worst_grid, 1e-10);
+  EXPECT_LE(worst_probe, 1e-10);
+  EXPECT_GT(std::abs(u), 4 * 0.25);  // fell by more than four of the grid's cells
+  std::printf("[mpm_fem free fall] %d particles u %.1e v %.1e F %.1e; plate nodes %.1e; grid %.1e; Newton %lld\n", int(m.particles.X.size()),
+              worst_u, worst_v, worst_F, worst_node, worst_grid, summary.newton_iterations);
+}
+
+}  // namespace
+}  // namespace loom
+
+namespace loom {
+namespace {
+
+// The centre particle's (x, y) history of a rolling-disk scene of seed 004, 40 steps of 0.01 s, with a lighter disk
+// (n_theta = 150, factor 1.2) than the paper's.
+struct History {
+  std::vector<double> x, y;
+};
+double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double d = 0.0;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  return d;
+}
+
+// B1 rolls on a rigid ground (method mpm, grid nodes held at y = -1.6); B3 on an FEM plate sharing those nodes.
+// With the side and top walls of B1 (free) and the plate's top row held, the coupled run is B1 to round-off: the
+// FEM cells, the reset field and the moving-grid locate change nothing where the plate does not move. Free, a
+// plate 1000 times stiffer than the disk moves the disk by the plate's deflection only (tens of micrometres).
+TEST(MpmFemCoupling, AStiffPlateRollsTheDiskAsTheRigidGroundDoes) {
+  const std::vector<std::string> b3 = {"material[plate].E=4.2e9"};
+  auto run_text = [](const std::string& text, std::vector<std::string> overrides) {
+    for (const char* o : {"time.steps=40", "output.every=0", "body[disk].particles.n_theta=150", "body[disk].particles.factor=1.2"})
+      overrides.push_back(o);
+    testing::TempDir out("mpm_fem_roll");
+    auto run = testing::make_mpm_run(testing::scene_from_text(text, overrides), out.path());
+    const RunSummary summary = run->run();
+    EXPECT_TRUE(summary.converged) << summary.failure;
+    const auto probes = testing::read_probes(out.file("probes.csv"));
+    return History{probes.column("centre_x"), probes.column("centre_y")};
+  };
+  const History ground = run_text(testing::read_text(std::string(LOOM_SOURCE_DIR) + "/scenes/rolling_disk_mpm.toml"), {});
+  // Method mpm_fem's scene with B1's free walls: its [[boundary]] left, right and top lose their displacement.
+  std::string text = testing::read_text(std::string(LOOM_SOURCE_DIR) + "/scenes/rolling_disk_on_plate.toml");
+  for (const std::string held : {"region = { box = [[-2.0, -3.2], [-2.0, 3.4]] }\ndisplacement = { x = 0 }\n",
+                                  "region = { box = [[22.0, -3.2], [22.0, 3.4]] }\ndisplacement = { x = 0 }\n",
+                                  "region = { box = [[-2.0, 3.4], [22.0, 3.4]] }\ndisplacement = { y = 0 }\n"}) {
+    const auto at = text.find(held);
+    ASSERT_NE(at, std::string::npos) << held;
+    text.replace(at, held.size(), held.substr(0, held.find('\n') + 1));
+  }
+  const std::string clamp = "\n[[boundary]]\nname = \"interface\"\nregion = { box = [[-2.0, -1.6], [22.0, -1.6]] }\ndisplacement = { x = 0, y = 0 }\n";
+  const History held = run_text(text + clamp, b3), plate = run_text(text, b3);
+  const double scale = std::abs(ground.x.back());
+  const double same_x = largest_difference(ground.x, held.x), same_y = largest_difference(ground.y, held.y);
+  const double plate_x = largest_difference(ground.x, plate.x), plate_y = largest_difference(ground.y, plate.y);
+  EXPECT_LE(std::max(same_x, same_y), 1e-12 * scale);
+  EXPECT_LE(std::max(plate_x, plate_y), 2e-4);
+  EXPECT_GT(std::max(plate_x, plate_y), 1e-7);  // the plate does deflect
+  std::printf("[mpm_fem vs rigid ground] x(0.4 s) = %.4f m; plate's top held: %.1e, %.1e m; free plate (E x 1000): %.1e, %.1e m\n",
+              ground.x.back(), same_x, same_y, plate_x, plate_y);
+}
+
+}  // namespace
+}  // namespace loom
