@@ -31,6 +31,8 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
     }
   };
   callbacks.settled = hooks.settled;
+  callbacks.step_size = hooks.step_size;
+  callbacks.end_time = hooks.end_time;
   TimeLoopResult result;
   // A RunError outside a step's graph (the initial state, a checkpoint, the writer): the run stops there, as
   // failed, with the steps that completed before it.
@@ -75,7 +77,8 @@ void summarise_run(const TimeLoopResult& result, const StepStatus& status, const
   summary.settled = result.settled;
   summary.steps_done = result.last_converged_step;
   summary.last_converged_step = result.last_converged_step;
-  summary.last_converged_time = result.completed ? double(result.last_converged_step) * schedule.dt
+  summary.last_converged_time = schedule.adaptive ? result.last_converged_time
+                                : result.completed ? double(result.last_converged_step) * schedule.dt
                                 : summary.converged ? double(result.last_converged_step) * schedule.dt
                                                     : result.last_converged_time;
   summary.newton_iterations = status.total_iterations;

@@ -24,6 +24,7 @@ struct RunSchedule {
   bool restarted = false;        // continued from the checkpoint of step first_step - 1 (step 0 is not written again)
   int first_step = 1;
   int stop_after = 0;            // stop after this step as if interrupted (0: run to the end)
+  bool adaptive = false;         // time.adaptive_dt: steps of varying size (the time reached is not step * dt)
 };
 
 struct RunHooks {
@@ -37,6 +38,9 @@ struct RunHooks {
   std::function<void(int step)> write_checkpoint;
   // After each completed step: true ends the run there as completed (time.stop_when).
   std::function<bool(const StepContext&)> settled;
+  // Adaptive time steps (time.adaptive_dt): the next step's size, and the time the run ends at.
+  std::function<double(const StepContext&)> step_size;
+  double end_time = 0.0;
 };
 
 TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGraph& graph, StepStatus& status, const RunHooks& hooks);

@@ -19,8 +19,9 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
       result.interrupted_by = interrupt_signal();
       return result;
     }
-    const double t_end = double(step) * dt;
-    double h = dt;
+    ctx.t = t;
+    const double t_end = callbacks.step_size ? std::min(t + callbacks.step_size(ctx), callbacks.end_time) : double(step) * dt;
+    double h = callbacks.step_size ? t_end - t : dt;
     int halvings = 0;
     status.step_iterations = 0;
     while (t < t_end) {
@@ -63,6 +64,7 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
       result.completed = result.settled = true;
       return result;
     }
+    if (callbacks.step_size && t >= callbacks.end_time) break;
     if (step == range.stop_after && step < steps) {
       result.stopped = true;
       return result;

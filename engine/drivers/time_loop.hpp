@@ -1,6 +1,7 @@
 // Time stepping with cut-backs: each scene step of size dt is solved by running the step graph; when
 // Newton fails the (sub)step is halved and retried, up to max_cutbacks halvings within one scene step.
-// Sub-steps complete the scene step at exactly t = step * dt (ctx.step_end marks the last one).
+// Sub-steps complete the scene step at exactly t = step * dt (ctx.step_end marks the last one), or at t + the
+// size the step_size callback gives (adaptive time steps).
 // A RunError thrown by a system (an anomaly, not a Newton failure) ends the loop with the partial result.
 // Between scene steps the loop stops early when a signal asked it to (engine/core/interrupt.hpp) or when
 // the requested last step is reached (`stop_after`); the state is then that of a completed step. A run also
@@ -34,6 +35,10 @@ struct TimeLoopCallbacks {
   std::function<void(const StepContext&, const StepStatus&)> cut_back;   // after each failed attempt
   // After step_done: true ends the run as completed (a flow that has come to rest, time.stop_when).
   std::function<bool(const StepContext&)> settled;
+  // Adaptive time stepping (time.adaptive_dt): when set, the size of the next scene step, asked at its start with
+  // ctx.t the time reached; the run then completes once t reaches end_time.
+  std::function<double(const StepContext&)> step_size;
+  double end_time = 0.0;
 };
 
 struct TimeLoopRange {

@@ -17,7 +17,8 @@ void read_probe(SceneSpec& s, const TableReader& t) {
                                   {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
                                   {"stress", ProbeKind::stress}, {"wall_force", ProbeKind::wall_force}, {"penetration", ProbeKind::penetration},
                                   {"speed", ProbeKind::speed}, {"mass", ProbeKind::mass}});
-  p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total}});
+  p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total},
+                                                             {"potential", EnergyPart::potential}, {"mechanical", EnergyPart::mechanical}});
   p.max = t.string("bound") == "max";
   const std::string quantity = t.string("quantity");
   p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
@@ -117,9 +118,13 @@ void read_probe(SceneSpec& s, const TableReader& t) {
         if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
       } else if (s.bodies.size() == 1) {
         p.body = 0;
+      } else if (s.scene.method == Method::mpm_fem && p.kind == ProbeKind::extent) {
+        p.body = mpm_body_index(s);  // extent probes read the particles
       } else {
         t.error("", "missing key body (the scene has several bodies)");
       }
+      if (s.scene.method == Method::mpm_fem && p.kind == ProbeKind::extent && p.body != mpm_body_index(s))
+        t.error("body", "method mpm_fem: an extent probe reads the particles of the MPM body \"" + s.bodies[std::size_t(mpm_body_index(s))].name + "\"");
       break;
     }
   }

@@ -70,6 +70,7 @@ class Loader {
     s.body_force = read_vector(root_.table("body_force"), diag_);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
     read_stop_when(s);
+    read_adaptive_dt(s);
     read_pfem_options(s, root_);
     const auto grid = root_.table("grid");
     s.grid.present = grid.present();
@@ -123,6 +124,28 @@ class Loader {
     s.time.stop_over = t.real("over");
     if (t.has("over") && !s.time.stop_rate) t.error("over", "over is the window of rate_below");
     s.time.stop_after = t.real("after");
+  }
+
+  // After the probes: time.adaptive_dt names one, and its formula must evaluate.
+  void read_adaptive_dt(SceneSpec& s) {
+    const auto time = root_.table("time");
+    const auto t = time.table("adaptive_dt");
+    if (!t.present()) {
+      if (time.has("end")) time.error("end", "end closes a run with time.adaptive_dt; with a fixed dt the run ends at steps * dt");
+      return;
+    }
+    const std::string probe = t.string("probe");
+    s.time.adaptive_probe = find_by_name(s.probes, probe);
+    if (t.has("probe") && s.time.adaptive_probe == kNoIndex) t.error("probe", "no [[probe]] named \"" + probe + "\" (known: " + names_of(s.probes) + ")");
+    s.time.adaptive_expression = t.string("expression");
+    if (s.time.adaptive_probe != kNoIndex && t.has("expression")) {
+      std::string err;
+      const double dt = evaluate_formula(s.time.adaptive_expression, {{probe, 0.0}, {"t", 0.0}}, &err);
+      if (!err.empty()) t.error("expression", "invalid formula \"" + s.time.adaptive_expression + "\" (it may use " + probe + " and t): " + err);
+      else if (!(dt > 0.0)) t.error("expression", "the step must be > 0; at " + probe + " = 0, t = 0 it is " + std::to_string(dt));
+    }
+    if (!time.has("end")) time.error("", "time.adaptive_dt needs time.end, the time the run ends at");
+    s.time.end = time.real("end");
   }
 
   void read_solver(SceneSpec& s) {

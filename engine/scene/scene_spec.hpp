@@ -27,7 +27,7 @@ inline bool is_mpm(Method m) { return m == Method::mpm || m == Method::mpm_fem; 
 enum class Integrator { static_, euler_backward, newmark, bossak };
 enum class InitialAcceleration { zero, equilibrium };
 enum class Stabilisation { none, ppp, asgs, osgs };
-enum class EnergyPart { kinetic, elastic, total };
+enum class EnergyPart { kinetic, elastic, total, potential, mechanical };
 enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
 enum class TangentUpdate { every_iteration, once_per_step };
@@ -64,6 +64,11 @@ struct TimeSpec {
   double stop_below = 0.0, stop_after = 0.0;
   bool stop_rate = false;  // stop_below bounds the probe's rate of change over the last stop_over of time
   double stop_over = 0.0;
+  // time.adaptive_dt: each step's size from a formula in the latest value of a probe (named by the probe) and t,
+  // evaluated at the step's start; the run ends at t = end (time.steps is then the most steps it may take).
+  Index adaptive_probe = kNoIndex;
+  std::string adaptive_expression;
+  double end = 0.0;
 };
 
 struct SolverSpec {

@@ -60,6 +60,15 @@ std::vector<KeySpec> build_schema() {
                   "Instead of below: the run stops when the probe's mean rate of change over the last `over` of time is below this.").above(0));
   s.push_back(key("time.stop_when.over", K::real, "Window of rate_below (time).").by_default("1").above(0));
   s.push_back(key("time.stop_when.after", K::real, "Not before this time (a flow starting from rest).").by_default("0").at_least(0));
+  s.push_back(key("time.adaptive_dt", K::table,
+                  "Adaptive time step: each step's size is `expression`, a formula in the latest value of `probe` (written by its "
+                  "name) and t, evaluated at the step's start (the value of the step before; [Aulisa 2019]'s bouncing disk takes "
+                  "dt from the lowest particle's height). time.dt is then only the first step's bound for the checks, time.end "
+                  "closes the run, and time.steps is the most steps it may take."));
+  s.push_back(key("time.adaptive_dt.probe", K::string, "Name of the [[probe]] the step size follows.").require());
+  s.push_back(key("time.adaptive_dt.expression", K::string,
+                  "The step size, a muparser formula in the probe's name and t (e.g. \"bottom > -0.16 ? 0.005 : 0.001\").").require());
+  s.push_back(key("time.end", K::real, "With time.adaptive_dt: the time at which the run ends.").above(0));
   // [solver]
   s.push_back(key("solver", K::table, "Newton-Raphson and linear solver settings."));
   s.push_back(key("solver.max_iterations", K::integer, "Newton iterations allowed per step before a cut-back.").by_default("25").at_least(1));
@@ -262,7 +271,9 @@ std::vector<KeySpec> build_schema() {
                   "extent: largest (bound = max) or smallest coordinate of a body's nodes along `component`; "
                   "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation); "
                   "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh; "
-                  "energy (method mpm): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles, or their total. "
+                  "energy (method mpm, mpm_fem): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles (and of the FEM bodies' "
+                  "Gauss points, with their consistent mass), total = kinetic + elastic, potential -sum m b . u of the body force "
+                  "at the step's time (u from the start), mechanical = kinetic + elastic + potential. "
                   "stress (fem, pfem): a `component` of the Cauchy stress at `at` (xx, yy, xy, zz, von_mises, or pressure = -tr/3), "
                   "extrapolated linearly from the quadrature points of the cell that holds the point and averaged over the cells "
                   "that share it (a node). "
@@ -292,7 +303,7 @@ std::vector<KeySpec> build_schema() {
                   "they crossed another), inserted and removed (particles added and taken away by remesh.insert_above, "
                   "remesh.remove_below and [[inlet]]s).")
                   .one_of({"area_change", "changed", "rejected", "isolated", "merged", "crossings", "inserted", "removed"}));
-  s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total"}).by_default("total"));
+  s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total", "potential", "mechanical"}).by_default("total"));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));
   s.push_back(key("output.directory", K::string, "Output directory (relative to the working directory); `loom run --out` replaces it.")

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/mesh/quad9_shape.hpp"
+
 namespace loom {
 namespace {
 
@@ -19,6 +21,43 @@ double elastic_energy(const BodyMaterial& material, const Mat3& F, bool mixed, d
   const auto& le = std::get<LinearElastic>(material.model);
   const Mat3 eps = 0.5 * (F + F.transpose()) - Mat3::Identity();
   return 0.5 * le.lambda * eps.trace() * eps.trace() + le.mu * eps.squaredNorm();
+}
+
+// Method mpm_fem: the FEM cells' energies at their Gauss points on the undeformed cells (X^ = X - u_n, after the
+// step's commit u_n is the FEM nodes' displacement): kinetic 1/2 rho_i V_0 |v_g|^2 (the consistent mass's quadratic
+// form), elastic V_0 psi(F), F = dx/dX^, potential -rho V_0 b . u_g.
+void add_fem_energy(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const GridView& g, const BoundaryConditions<2>& bc,
+                    double& kinetic, double& elastic, double& potential) {
+  const SceneSpec& scene = *ctx.scene;
+  const Quad9Gauss& rule = quad9_gauss();
+  const Index first = g.activity.always_active_from;
+  for (Index c = first; c < g.grid.size(); ++c) {
+    const Index b = g.grid.body[c];
+    const double rho = scene.materials[std::size_t(scene.bodies[std::size_t(b)].material)].density;
+    const double rho_i = scene.bodies[std::size_t(b)].unit_inertia ? 1.0 : rho;
+    Quad9Coordinates x, X;
+    for (int a = 0; a < 9; ++a) {
+      const Index i = g.grid.node(c, a);
+      x.row(a) = (g.nodes.X[i] + g.nodes.u[i]).transpose();
+      X.row(a) = (g.nodes.X[i] - g.nodes.u_n[i]).transpose();
+    }
+    for (std::size_t q = 0; q < 9; ++q) {
+      double det = 0.0;
+      const Quad9Gradients dN = quad9_gradients(X, rule.xi[q], &det);
+      const Quad9Values N = quad9_shape(rule.xi[q]);
+      const double V0 = rule.weight[q] * det;
+      Vec2 v = Vec2::Zero(), u = Vec2::Zero();
+      for (int a = 0; a < 9; ++a) {
+        const Index i = g.grid.node(c, a);
+        v += N[a] * g.nodes.v[i], u += N[a] * (g.nodes.u_n[i] + g.nodes.u[i]);
+      }
+      Mat3 F = Mat3::Identity();
+      F.topLeftCorner<2, 2>() = x.transpose() * dN;
+      kinetic += 0.5 * rho_i * V0 * v.squaredNorm();
+      elastic += V0 * elastic_energy(materials[std::size_t(b)], F, false, 0.0);
+      if (!bc.fem_body_force.empty()) potential -= rho * V0 * bc.fem_body_force[std::size_t(9 * (c - first)) + q].dot(u);
+    }
+  }
 }
 
 }  // namespace
@@ -45,7 +84,7 @@ double pressure_jump(const GridView& g) {
   return n ? sum / double(n) : 0.0;
 }
 
-void evaluate_particle_probes(const StepContext&, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
+void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
                               const Points<2>& particles, const Points<2>& probe_points, const GridView& grid,
                               const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
                               std::vector<double>& values) {
@@ -75,13 +114,19 @@ void evaluate_particle_probes(const StepContext&, const ParticleProbePlan& plan,
         break;
       }
       case ProbeKind::energy: {
-        double kinetic = 0.0, elastic = 0.0;
+        double kinetic = 0.0, elastic = 0.0, potential = 0.0;
         for (Index i = 0; i < particles.X.size(); ++i) {
           if (particles.v.used()) kinetic += 0.5 * particles.mass[i] * particles.v[i].squaredNorm();
           elastic += particles.volume[i] *
                      elastic_energy(materials[std::size_t(particles.body[i])], particles.F[i], mixed, mixed ? particles.pressure[i] : 0.0);
+          if (!bc.particle_body_force.empty()) potential -= particles.mass[i] * bc.particle_body_force[std::size_t(i)].dot(particles.u[i]);
         }
-        values[k] = p.energy == EnergyPart::kinetic ? kinetic : p.energy == EnergyPart::elastic ? elastic : kinetic + elastic;
+        if (grid.activity.always_active_from != kNoIndex) add_fem_energy(ctx, materials, grid, bc, kinetic, elastic, potential);
+        values[k] = p.energy == EnergyPart::kinetic     ? kinetic
+                    : p.energy == EnergyPart::elastic   ? elastic
+                    : p.energy == EnergyPart::potential ? potential
+                    : p.energy == EnergyPart::total     ? kinetic + elastic
+                                                        : kinetic + elastic + potential;
         break;
       }
       case ProbeKind::pressure_jump: values[k] = grid.nodes.p.used() ? pressure_jump(grid) : kNaN; break;

@@ -186,3 +186,37 @@ TEST(MpmFemCoupling, AStiffPlateRollsTheDiskAsTheRigidGroundDoes) {
 
 }  // namespace
 }  // namespace loom
+
+namespace loom {
+namespace {
+
+// time.adaptive_dt: each step's size is the formula at the previous step's probe value, and the run ends at
+// time.end exactly (the last step shortened), whatever time.steps allows beyond it.
+TEST(AdaptiveTimeStep, EachStepTakesTheFormulaAtTheProbesLastValueAndTheRunEndsAtTheEnd) {
+  std::string text = falling_scene(true);
+  const std::string fixed = "dt = 0.02\nsteps = 25\n";
+  text.replace(text.find(fixed), fixed.size(),
+               "dt = 0.02\nsteps = 100\nend = 0.3\nadaptive_dt = { probe = \"bottom\", expression = \"bottom > -0.75 ? 0.02 : 0.0125\" }\n");
+  text += "[[probe]]\nname = \"bottom\"\nkind = \"extent\"\ncomponent = \"y\"\nbound = \"min\"\n";
+  testing::TempDir dir("adaptive_dt");
+  auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  EXPECT_TRUE(summary.completed);
+  EXPECT_DOUBLE_EQ(summary.last_converged_time, 0.3);
+  const auto probes = testing::read_probes(dir.file("probes.csv"));
+  const auto t = probes.column("time"), bottom = probes.column("bottom");
+  int coarse = 0, fine = 0;
+  for (std::size_t k = 1; k < t.size(); ++k) {
+    const double want = std::min(bottom[k - 1] > -0.75 ? 0.02 : 0.0125, 0.3 - t[k - 1]);
+    EXPECT_NEAR(t[k] - t[k - 1], want, 1e-14) << "step " << k;
+    (want == 0.02 ? coarse : fine) += 1;
+  }
+  EXPECT_NEAR(t.back(), 0.3, 1e-15);
+  EXPECT_GT(coarse, 2);
+  EXPECT_GT(fine, 2);
+  std::printf("[adaptive dt] %zu steps to t = %.3f: %d of 0.02, %d of 0.0125 or the last one's remainder\n", t.size() - 1, t.back(), coarse, fine);
+}
+
+}  // namespace
+}  // namespace loom
