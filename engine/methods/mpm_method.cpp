@@ -34,8 +34,8 @@ MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
   ctx_.scene = &scene_;
   // A static model must hold the active grid's rigid motions; a point probe must start in the body.
   check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
-  if (scene_.bodies[std::size_t(mpm_body_index(scene_))].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
-    const MeshData body_mesh = generate_body_mesh(scene_.bodies[std::size_t(mpm_body_index(scene_))].mesh);
+  if (scene_.bodies.size() == 1 && scene_.bodies[0].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
+    const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
     check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
   }
   probe_plan_ = plan_particle_probes(scene_);

@@ -41,8 +41,10 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     if (grid.present() && !s.grid.quad9) grid.error("cells", "method mpm_fem couples FEM quad9 cells to a quad9 grid: cells = \"quad9\"");
     if (s.time.initial_acceleration == InitialAcceleration::equilibrium)
       time.error("initial_acceleration", "method mpm_fem starts from a_0 = 0 at the particles and the FEM nodes (zero)");
-  } else if (s.bodies.size() > 1) {
-    bodies[1].error("", "method mpm supports one body (method mpm_fem couples one to FEM bodies)");
+  } else if (s.bodies.size() > 1 && root.table("mpm").string("scheme") != "particle_newmark") {
+    // Several bodies share the grid (in contact through it, no slip) with Newmark at the particles; the grid
+    // Newmark of [Moreno et al.] is checked with one.
+    bodies[1].error("", "method mpm with several bodies needs [mpm] scheme = \"particle_newmark\" (method mpm_fem couples one to FEM bodies)");
   }
   for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
     const auto e = s.bodies[b].element;

@@ -305,7 +305,7 @@ class Loader {
       const std::string body = t.string("body");
       b.body = find_by_name(s.bodies, body);
       if (b.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
-    } else if (s.bodies.size() > 1 && s.scene.method != Method::mpm_fem) {  // mpm_fem: the nodes of grid and FEM bodies in the box
+    } else if (s.bodies.size() > 1 && !is_mpm(s.scene.method)) {  // mpm, mpm_fem: the grid (and FEM) nodes in the box, of any body
       t.error("", "missing key body (the scene has several bodies)");
     }
     const auto region = t.table("region");

@@ -235,7 +235,7 @@ std::vector<KeySpec> build_schema() {
   // [[boundary]]
   s.push_back(key("boundary", K::table_array, "Named regions with optional conditions on them."));
   s.push_back(key("boundary[].name", K::string, "Name probes refer to.").require());
-  s.push_back(key("boundary[].body", K::string, "Body the region selects from (may be left out when there is one body)."));
+  s.push_back(key("boundary[].body", K::string, "Body the region selects from (may be left out when there is one body, and in methods mpm and mpm_fem, whose regions select grid and FEM nodes of any body)."));
   s.push_back(key("boundary[].region", K::table,
                   "Region: nodes inside the box (or of the group), and boundary edges with both end nodes inside. Method mpm: a "
                   "displacement or pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges in the box "

@@ -107,6 +107,7 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
       case ProbeKind::extent: {
         double e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
         for (Index i = 0; i < particles.X.size(); ++i) {
+          if (p.body != kNoIndex && particles.body[i] != p.body) continue;  // several bodies: the probe's
           const double x = particles.position(i)[p.component];
           e = p.max ? std::max(e, x) : std::min(e, x);
         }

@@ -220,3 +220,82 @@ TEST(AdaptiveTimeStep, EachStepTakesTheFormulaAtTheProbesLastValueAndTheRunEndsA
 
 }  // namespace
 }  // namespace loom
+
+namespace loom {
+namespace {
+
+// The block's weight reaches the plate's clamp through the shared nodes: a block of particles (sampled from a
+// rectangle mesh) resting on the plate, one step of 1000 s (the inertia m / (beta dt^2) is then 1e-9 of the
+// stiffness: a static solve), the plate weightless and clamped at its bottom. The clamp's reaction is the block's
+// weight, rho A g, to the Newton tolerance: the interface passes the whole force (the soft stiffness's forces sum to
+// zero over a cell's nodes and add nothing).
+TEST(MpmFemCoupling, TheClampCarriesTheWeightOfABlockOnThePlate) {
+  std::string text = falling_scene(false);
+  const auto cut = [&](const std::string& from, const std::string& to) { text.replace(text.find(from), from.size(), to); };
+  cut("dt = 0.02\nsteps = 25\n", "dt = 1000.0\nsteps = 1\n");
+  cut("particles = { generator = \"disk\", centre = [0.5, -0.2], radius = 0.5, core_radius = 0.4, n_theta = 40, factor = 1.3 }\n",
+      "mesh = { generator = \"rectangle\", origin = [0.0, -2.0], size = [0.5, 0.25], divisions = [8, 4], pattern = \"alternating\" }\n"
+      "particles_per_cell = 6\n");
+  cut("at = [0.5, -0.2]", "at = [0.25, -1.9]");
+  text += "[[boundary]]\nname = \"clamp\"\nregion = { box = [[-1.0, -2.5], [2.0, -2.5]] }\ndisplacement = { x = 0, y = 0 }\n"
+          "[[probe]]\nname = \"Ry\"\nkind = \"reaction\"\nboundary = \"clamp\"\ncomponent = \"y\"\n"
+          "[[probe]]\nname = \"Rx\"\nkind = \"reaction\"\nboundary = \"clamp\"\ncomponent = \"x\"\n";
+  testing::TempDir dir("mpm_fem_block");
+  auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const auto probes = testing::read_probes(dir.file("probes.csv"));
+  const double weight = 1000.0 * 0.5 * 0.25 * 9.81;
+  const double Ry = probes.column("Ry").back(), Rx = probes.column("Rx").back();
+  EXPECT_NEAR(std::abs(Ry), weight, 1e-7 * weight);
+  EXPECT_NEAR(Rx, 0.0, 1e-7 * weight);
+  double mass = 0.0;
+  for (Index p = 0; p < run->model().particles.X.size(); ++p) mass += run->model().particles.mass[p];
+  EXPECT_NEAR(mass * 9.81, weight, 1e-12 * weight);
+  std::printf("[mpm_fem block on plate] clamp reaction (%.6e, %.10e) N/m against the weight %.10e N/m\n", Rx, Ry, weight);
+}
+
+}  // namespace
+}  // namespace loom
+
+namespace loom {
+namespace {
+
+// Method mpm with several bodies (scheme particle_newmark, the MPM side of the B4 comparison): two disks in cells of
+// their own, each under its own body force, fall as Newmark's closed form says, each particle by its body's force.
+TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
+  const std::string text =
+      "[scene]\nname = \"two-disks\"\nmethod = \"mpm\"\n"
+      "[time]\nintegrator = \"newmark\"\ndt = 0.02\nsteps = 25\nbeta = 0.3\ngamma = 0.5\n"
+      "[solver]\nresidual_relative = 1e-12\n"
+      "[mpm]\nscheme = \"particle_newmark\"\nsoft_stiffness = { c1 = 0.1, c2 = 0.01 }\n"
+      "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 4.2e6\nnu = 0.4\ndensity = 1000.0\n"
+      "[[material]]\nname = \"n\"\nmodel = \"neo_hooke\"\nE = 1.0e6\nnu = 0.3\ndensity = 500.0\n"
+      "[[body]]\nname = \"a\"\nmaterial = \"m\"\n"
+      "particles = { generator = \"disk\", centre = [-1.0, 0.5], radius = 0.4, core_radius = 0.3, n_theta = 40, factor = 1.3 }\n"
+      "body_force = { y = -9.81 }\n"
+      "[[body]]\nname = \"b\"\nmaterial = \"n\"\n"
+      "particles = { generator = \"disk\", centre = [1.0, 0.5], radius = 0.4, core_radius = 0.3, n_theta = 40, factor = 1.3 }\n"
+      "body_force = { y = -4.0 }\n"
+      "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [-2.0, -2.0]\nsize = [4.0, 3.0]\ndivisions = [4, 3]\nrefinements = 2\n"
+      "[[probe]]\nname = \"low_b\"\nkind = \"extent\"\ncomponent = \"y\"\nbound = \"min\"\nbody = \"b\"\n"
+      "[output]\nevery = 0\n";
+  testing::TempDir dir("two_disks");
+  auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const Points<2>& particles = run->model().particles;
+  double worst = 0.0, low_b = 1e300;
+  for (Index p = 0; p < particles.X.size(); ++p) {
+    const double g = particles.body[p] == 0 ? -9.81 : -4.0;
+    worst = std::max(worst, (particles.u[p] - Vec2(0.0, g * u_factor(kSteps))).norm() / std::abs(g * u_factor(kSteps)));
+    if (particles.body[p] == 1) low_b = std::min(low_b, particles.position(p).y());
+  }
+  EXPECT_LE(worst, 1e-10);
+  // The extent probe reads its body only (body a, under more gravity, ends 0.7 m lower).
+  EXPECT_NEAR(testing::read_probes(dir.file("probes.csv")).column("low_b").back(), low_b, 1e-12);
+  std::printf("[mpm, two bodies] %d particles: u against each body's closed form %.1e\n", int(particles.X.size()), worst);
+}
+
+}  // namespace
+}  // namespace loom
