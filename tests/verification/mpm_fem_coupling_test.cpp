@@ -11,7 +11,10 @@
 //    to round-off, with F = I: the FEM cells' consistent mass, their body force and the shared nodes carry a
 //    translation exactly;
 //  - a disk rolling on a plate a thousand times stiffer than itself rolls as on the rigid ground of method mpm
-//    (the same grid, particles and contact terms): the coupling adds only the plate's compliance.
+//    (the same grid, particles and contact terms): the coupling adds only the plate's compliance;
+//  - a block of particles resting on the plate: the plate's clamp carries its weight;
+// and two things the coupled scenes brought with them: time.adaptive_dt (each step the formula at the probe's last
+// value, the run ending at time.end) and method mpm with several bodies (two disks, each under its own force).
 #include <gtest/gtest.h>
 
 #include <cmath>
