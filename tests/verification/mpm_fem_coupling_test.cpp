@@ -13,6 +13,7 @@
 //  - a disk rolling on a plate a thousand times stiffer than itself rolls as on the rigid ground of method mpm
 //    (the same grid, particles and contact terms): the coupling adds only the plate's compliance;
 //  - a block of particles resting on the plate: the plate's clamp carries its weight;
+//  - the patch test across the interface: a homogeneous deformation is reproduced exactly;
 // and two things the coupled scenes brought with them: time.adaptive_dt (each step the formula at the probe's last
 // value, the run ending at time.end) and method mpm with several bodies (two disks, each under its own force).
 #include <gtest/gtest.h>
@@ -41,7 +42,7 @@ std::string falling_scene(bool gravity_on_plate) {
                      "[[body]]\nname = \"disk\"\nmaterial = \"m\"\n"
                      "particles = { generator = \"disk\", centre = [0.5, -0.2], radius = 0.5, core_radius = 0.4, n_theta = 40, factor = 1.3 }\n"
                      "body_force = { y = -9.81 }\n"
-                     "[[body]]\nname = \"plate\"\nmaterial = \"p\"\nelement = \"quad9\"\n") +
+                     "[[body]]\nname = \"plate\"\nmaterial = \"m\"\nelement = \"quad9\"\n") +
          (gravity_on_plate ? "body_force = { y = -9.81 }\n" : "") +
          "mesh = { generator = \"rectangle\", origin = [-1.0, -2.5], size = [3.0, 0.5], divisions = [3, 1] }\n"
          "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [-1.0, -2.0]\nsize = [3.0, 3.0]\ndivisions = [3, 3]\n"
@@ -298,6 +299,58 @@ TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
   // The extent probe reads its body only (body a, under more gravity, ends 0.7 m lower).
   EXPECT_NEAR(testing::read_probes(dir.file("probes.csv")).column("low_b").back(), low_b, 1e-12);
   std::printf("[mpm, two bodies] %d particles: u against each body's closed form %.1e\n", int(particles.X.size()), worst);
+}
+
+}  // namespace
+}  // namespace loom
+
+namespace loom {
+namespace {
+
+// The patch test across the interface: a grid filled with particles whose quadrature is exact for a constant
+// stress (each quad9 cell cut into two triangles with 6 Dunavant points each, degree 4 >= the degree 3 of grad N),
+// a plate of the same material below it (across two materials a homogeneous F would not balance the tractions),
+// every outer node given u = A X (one static-like step of 1e4 s, Neo-Hooke). A homogeneous deformation F = I + A
+// is then the exact discrete solution on both sides: every node, grid's and plate's, moves by A X and every
+// particle has F = I + A, to the Newton tolerance (with the plate 3 times stiffer the interface nodes are off by
+// 2e-3: the test can fail).
+TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
+  const std::string ux = "t * (0.01 * x + 0.02 * y) / 1e4", uy = "t * (-0.015 * x + 0.005 * y) / 1e4";
+  std::string text =
+      "[scene]\nname = \"patch\"\nmethod = \"mpm_fem\"\n"
+      "[time]\nintegrator = \"newmark\"\ndt = 1e4\nsteps = 1\nbeta = 0.3\ngamma = 0.5\n"
+      "[solver]\nresidual_relative = 1e-13\nresidual_absolute = 1e-14\n"
+      "[mpm]\nsoft_stiffness = { c1 = 0.0, c2 = 0.0 }\n"
+      "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 1.0e6\nnu = 0.3\ndensity = 1000.0\n"
+      "[[body]]\nname = \"block\"\nmaterial = \"m\"\nparticles_per_cell = 6\n"
+      "mesh = { generator = \"rectangle\", origin = [0.0, 0.0], size = [2.0, 1.0], divisions = [4, 2], pattern = \"alternating\" }\n"
+      "[[body]]\nname = \"plate\"\nmaterial = \"m\"\nelement = \"quad9\"\n"
+      "mesh = { generator = \"rectangle\", origin = [0.0, -0.5], size = [2.0, 0.5], divisions = [2, 1] }\n"
+      "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [0.0, 0.0]\nsize = [2.0, 1.0]\ndivisions = [2, 1]\nrefinements = 1\n"
+      "[output]\nevery = 0\n";
+  for (const char* box : {"[[0.0, -0.5], [0.0, 1.0]]", "[[2.0, -0.5], [2.0, 1.0]]", "[[0.0, 1.0], [2.0, 1.0]]", "[[0.0, -0.5], [2.0, -0.5]]"})
+    text += std::string("[[boundary]]\nname = \"side") + std::to_string(text.size()) + "\"\nregion = { box = " + box +
+            " }\ndisplacement = { x = \"" + ux + "\", y = \"" + uy + "\" }\n";
+  testing::TempDir dir("mpm_fem_patch");
+  auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const MpmModel& m = run->model();
+  Eigen::Matrix2d A;
+  A << 0.01, 0.02, -0.015, 0.005;
+  double worst_node = 0.0, worst_F = 0.0;
+  for (Index i = 0; i < m.grid_nodes.size(); ++i) {
+    const Vec2 X0 = m.grid_nodes.X[i] - m.grid_nodes.u_n[i];  // undeformed
+    worst_node = std::max(worst_node, (m.grid_nodes.u_n[i] + m.grid_nodes.u[i] - A * X0).norm());
+  }
+  Mat3 F = Mat3::Identity();
+  F.topLeftCorner<2, 2>() += A;
+  for (Index p = 0; p < m.particles.X.size(); ++p) worst_F = std::max(worst_F, (m.particles.F[p] - F).norm());
+  EXPECT_EQ(m.particles.X.size(), 8 * 2 * 6);
+  EXPECT_LE(worst_node, 1e-12);
+  EXPECT_LE(worst_F, 1e-12);
+  std::printf("[mpm_fem patch] %d nodes move by A X to %.1e, %d particles have F = I + A to %.1e\n", int(m.grid_nodes.size()), worst_node,
+              int(m.particles.X.size()), worst_F);
 }
 
 }  // namespace
