@@ -28,7 +28,7 @@ void MpmRun::write_checkpoint(int step) {
   writer_.wait();  // the step's frames are in the collection
   ScopedTimer timer(timers_, "checkpoint");
   CheckpointWriter w;
-  write_checkpoint_header(w, checkpoint_header("mpm", ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
+  write_checkpoint_header(w, checkpoint_header(method_name(scene_.scene.method), ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
   visit_stores(std::as_const(m_), [&](const char* name, const auto& store) { w.store(name, store); });
   store_checkpoint(w, options_, step);
 }
@@ -44,6 +44,9 @@ CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
   });
   m_.activity.version = 0;  // the first step activates the grid of the restored particles
   resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
+  // The probes of the restored step, which an adaptive step size reads before the next step writes them.
+  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView{m_.grid, m_.activity, m_.grid_nodes},
+                           m_.system, m_.bc, 0, probe_values_);
   return h;
 }
 

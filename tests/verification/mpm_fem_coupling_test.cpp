@@ -15,9 +15,11 @@
 //  - a block of particles resting on the plate: the plate's clamp carries its weight;
 //  - the patch test across the interface: a homogeneous deformation is reproduced exactly;
 // and two things the coupled scenes brought with them: time.adaptive_dt (each step the formula at the probe's last
-// value, the run ending at time.end) and method mpm with several bodies (two disks, each under its own force).
+// value, the run ending at time.end; a restarted coupled run equal to the straight one) and method mpm with several
+// bodies (two disks, each under its own force).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -351,6 +353,35 @@ TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
   EXPECT_LE(worst_F, 1e-12);
   std::printf("[mpm_fem patch] %d nodes move by A X to %.1e, %d particles have F = I + A to %.1e\n", int(m.grid_nodes.size()), worst_node,
               int(m.particles.X.size()), worst_F);
+}
+
+}  // namespace
+}  // namespace loom
+
+namespace loom {
+namespace {
+
+// A coupled run with an adaptive step, stopped and restarted, is the run that went straight through, bit for bit
+// (the checkpoint holds the nodes' reference positions, u_n, v and a; the restored probes give the next step's size).
+TEST(MpmFemCoupling, ARestartedAdaptiveRunIsTheStraightRun) {
+  std::string text = falling_scene(true);
+  const std::string fixed = "dt = 0.02\nsteps = 25\n";
+  text.replace(text.find(fixed), fixed.size(),
+               "dt = 0.02\nsteps = 100\nend = 0.3\nadaptive_dt = { probe = \"bottom\", expression = \"bottom > -0.75 ? 0.02 : 0.0125\" }\n");
+  text += "[[probe]]\nname = \"bottom\"\nkind = \"extent\"\ncomponent = \"y\"\nbound = \"min\"\n"
+          "[[probe]]\nname = \"energy\"\nkind = \"energy\"\nenergy = \"mechanical\"\n";
+  testing::TempDir dir("mpm_fem_restart");
+  const std::string scene = dir.file("scene.toml");
+  testing::write_text(scene, text);
+  const auto straight = testing::run_loom({"run", scene, "--quiet", "--threads", "1", "--out", dir.file("straight")});
+  ASSERT_EQ(straight.exit_code, 0) << straight.err;
+  const auto first = testing::run_loom({"run", scene, "--quiet", "--threads", "1", "--out", dir.file("split"), "--stop-after", "9"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const auto second = testing::run_loom({"run", scene, "--quiet", "--threads", "1", "--restart", dir.file("split")});
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  const std::string a = testing::read_text(dir.file("straight/probes.csv")), b = testing::read_text(dir.file("split/probes.csv"));
+  EXPECT_EQ(a, b);
+  EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 15);
 }
 
 }  // namespace
