@@ -32,6 +32,7 @@ namespace loom {
 MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
   ctx_.scene = &scene_;
+  if (options_.profile) timers_.enable_profile();
   // A static model must hold the active grid's rigid motions; a point probe must start in the body.
   check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
   if (scene_.bodies.size() == 1 && scene_.bodies[0].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle

@@ -330,6 +330,34 @@ TEST(OutputReadBack, ProfileNestsStepSystemIterationAndSubPhase) {
   EXPECT_TRUE(t2.has("most_expensive"));
 }
 
+// --profile for method mpm (and mpm_fem, the same recipe): the steps hold the particle-Newmark systems and the
+// Newton iterations.
+TEST(OutputReadBack, ProfileOfAnMpmRunHoldsItsSystemsAndIterations) {
+  TempDir out("output_profile_mpm");
+  const Command c = run_loom({"run", std::string(LOOM_SOURCE_DIR) + "/scenes/rolling_disk_mpm.toml", "--out", out.path(), "--quiet",
+                              "--profile", "--set", "time.steps=2", "--set", "output.every=0", "--set", "body[0].particles.n_theta=100"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const Json timings = parse_json(read_text(out.file("timings.json")));
+  ASSERT_TRUE(timings.has("profile"));
+  int scene_steps = 0;
+  for (const Json& step : timings.at("profile").at("steps").array) {
+    if (step.at("step").number < 1) continue;
+    ++scene_steps;
+    std::vector<std::string> systems;
+    const Json* newton = nullptr;
+    for (const Json& s : step.at("children").array) {
+      systems.push_back(s.at("name").string);
+      if (s.at("name").string == "newton") newton = &s;
+    }
+    for (const char* name : {"locate_particles", "activate_grid", "newton", "commit_particle_newmark", "probes"})
+      EXPECT_NE(std::find(systems.begin(), systems.end(), name), systems.end()) << name;
+    ASSERT_NE(newton, nullptr);
+    EXPECT_GE(newton->at("children").array.size(), 2u);  // iteration 0 and at least one solve
+    expect_children_within(step, step.at("name").string, false);
+  }
+  EXPECT_EQ(scene_steps, 2);
+}
+
 }  // namespace
 }  // namespace loom::testing
 
