@@ -33,7 +33,7 @@ class MpmNewtonProblem final : public NonlinearProblem {
     assembled_ = true;
     if (m_.particle_newmark)
       return assemble_particle_newmark(ctx_, with_tangent, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc,
-                                       m_.particle_loc, m_.system)
+                                       m_.particle_loc, m_.system, &timers_)
                  .inverted_cells == 0;
     const GridAssemblyOptions options{with_tangent, inertia_};
     return assemble_grid_system(ctx_, options, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc, m_.particle_loc,

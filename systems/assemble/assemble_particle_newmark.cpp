@@ -57,10 +57,12 @@ bool add_fem_cell(const MaterialT& material, const ParticleNewmark& tn, const No
   return true;
 }
 
+enum class CellPass { all, particle_cells, fem_cells };
+
 template <int NEN>
 void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<BodyMaterial>& materials, const Cells& grid,
                     const GridActivity& act, const Nodes<2>& g, const Points<2>& particles, const BoundaryConditions<2>& bc,
-                    PointLocations& loc, LinearSystem& system, std::atomic<Index>& inverted) {
+                    PointLocations& loc, LinearSystem& system, std::atomic<Index>& inverted, CellPass pass) {
   const SceneSpec& scene = *ctx.scene;
   const ParticleNewmark tn{scene.time.beta, scene.time.gamma, ctx.dt};
   const SoftStiffness soft{scene.mpm.soft_c1, scene.mpm.soft_c2};
@@ -71,13 +73,15 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
   // About 64 particles' work per task: cells of a fine body hold tens to thousands of them.
   const Index grain = std::max<Index>(1, 64 * act.n_active_cells() / std::max<Index>(1, particles.X.size()));
   for_each_active_cell_by_colour(act, [&](Index c) {
+    const bool fem_cell = fem_from != kNoIndex && c >= fem_from;
+    if ((pass == CellPass::particle_cells && fem_cell) || (pass == CellPass::fem_cells && !fem_cell)) return;
     const Index entry = act.active_index[std::size_t(c)];
     NodalVectors<NEN> du;
     for (int a = 0; a < NEN; ++a) du.row(a) = g.u[grid.node(c, a)].transpose();
     ElementVector<NEN> r = ElementVector<NEN>::Zero();
     ElementMatrix<NEN> K = ElementMatrix<NEN>::Zero();
     if constexpr (NEN == 9) {
-      if (fem_from != kNoIndex && c >= fem_from) {
+      if (fem_cell) {
         const Index b = grid.body[c];
         const MaterialSpec& ms = scene.materials[std::size_t(scene.bodies[std::size_t(b)].material)];
         const double rho_inertia = scene.bodies[std::size_t(b)].unit_inertia ? 1.0 : ms.density;
@@ -127,13 +131,24 @@ template Eigen::Matrix<double, 9, 2> particle_trial_gradients<9>(const Eigen::Ma
 
 AssemblyResult assemble_particle_newmark(const StepContext& ctx, bool tangent, const std::vector<BodyMaterial>& materials, const Cells& grid,
                                          const GridActivity& activity, const Nodes<2>& grid_nodes, const Points<2>& particles,
-                                         const BoundaryConditions<2>& bc, PointLocations& loc, LinearSystem& system) {
+                                         const BoundaryConditions<2>& bc, PointLocations& loc, LinearSystem& system, Timers* timers) {
   auto& A = system.pattern.matrix;
   if (tangent) std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
   system.residual_full.setZero();
   std::atomic<Index> inverted{0};
-  if (grid.stride == 9) assemble_cells<9>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted);
-  else assemble_cells<4>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted);
+  if (grid.stride == 9 && activity.always_active_from != kNoIndex && timers) {
+    // Method mpm_fem: the FEM cells, then the cells with particles, each pass timed (both passes colour by colour).
+    {
+      ScopedTimer t(*timers, "newton/assemble/fem_cells");
+      assemble_cells<9>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, CellPass::fem_cells);
+    }
+    ScopedTimer t(*timers, "newton/assemble/particle_cells");
+    assemble_cells<9>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, CellPass::particle_cells);
+  } else if (grid.stride == 9) {
+    assemble_cells<9>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, CellPass::all);
+  } else {
+    assemble_cells<4>(ctx, tangent, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, CellPass::all);
+  }
   // External nodal loads (none yet: body forces act at the particles) and the free rows.
   const DofMap& dofs = system.dofs;
   for_each_index(dofs.n_dofs(), [&](Index dof) {

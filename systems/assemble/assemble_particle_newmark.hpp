@@ -6,7 +6,9 @@
 // absent from the system (equivalent to the paper's eq 27 lumped "mass" rows, which drive them to zero).
 // Prescribed dofs enter through the Dirichlet lift; cells are visited colour by colour and the particles of
 // a cell in index order: results do not depend on the thread count. The deformation gradient of each
-// particle at the iterate is stored in the locations' F column.
+// particle at the iterate is stored in the locations' F column. Method mpm_fem's FEM cells (GridActivity::
+// always_active_from) are assembled in a pass of their own before the cells with particles when `timers` is given,
+// each timed (newton/assemble/fem_cells, newton/assemble/particle_cells).
 #pragma once
 
 #include <vector>
@@ -19,6 +21,7 @@
 #include "engine/store/nodes.hpp"
 #include "engine/store/point_locations.hpp"
 #include "engine/store/points.hpp"
+#include "engine/timing/timers.hpp"
 #include "systems/assemble/assemble_system.hpp"
 #include "systems/assemble/materials/material.hpp"
 
@@ -26,7 +29,7 @@ namespace loom {
 
 AssemblyResult assemble_particle_newmark(const StepContext& ctx, bool tangent, const std::vector<BodyMaterial>& materials, const Cells& grid,
                                          const GridActivity& activity, const Nodes<2>& grid_nodes, const Points<2>& particles,
-                                         const BoundaryConditions<2>& bc, PointLocations& loc, LinearSystem& system);
+                                         const BoundaryConditions<2>& bc, PointLocations& loc, LinearSystem& system, Timers* timers = nullptr);
 
 // The trial gradients a particle's F is built from: dN, or T^T dN when it recedes from a wall (quad9).
 template <int NEN>
