@@ -8,6 +8,7 @@ top and its change per bounce (a body that bounces without loss keeps it; the dr
 
 usage: tools/bounce_summary.py RUN_DIR [RUN_DIR ...] [--probe centre_y] [--energy energy] [--gap 1.36] [--g 9.81]
        [--csv FILE]   (one row per run: impact time, first rebound fraction, energy lost by the first top)
+       [--plot FILE --labels A,B,...]   (the centre's height and the mechanical energy against time, one line per run)
 """
 import argparse
 import csv
@@ -34,6 +35,8 @@ def main():
     ap.add_argument("--gap", type=float, default=1.36, help="fall height to the first contact (m)")
     ap.add_argument("--g", type=float, default=9.81)
     ap.add_argument("--csv", default=None)
+    ap.add_argument("--plot", default=None)
+    ap.add_argument("--labels", default=None)
     a = ap.parse_args()
     t_contact = math.sqrt(2 * a.gap / a.g)
     rows = []
@@ -63,6 +66,25 @@ def main():
         if e:
             print(f"  energy at the end {e[-1]:+.2f} J")
         rows.append([run, t[k0], (y[tops[0]] - y[k0]) / drop if tops else 0.0, e[tops[0]] if (e and tops) else float("nan")])
+    if a.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        labels = a.labels.split(",") if a.labels else a.runs
+        fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+        for run, label in zip(a.runs, labels):
+            r = read(run)
+            t = [float(x["time"]) for x in r]
+            ax1.plot(t, [float(x[a.probe]) for x in r], label=label, lw=1)
+            if a.energy in r[0]:
+                ax2.plot(t, [float(x[a.energy]) for x in r], label=label, lw=1)
+        ax1.set_ylabel(f"{a.probe} (m)")
+        ax2.set_ylabel("mechanical energy (J)")
+        ax2.set_xlabel("t (s)")
+        ax1.legend(fontsize=7)
+        ax1.grid(alpha=0.3), ax2.grid(alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(a.plot, dpi=110)
     if a.csv:
         with open(a.csv, "w", newline="") as f:
             w = csv.writer(f)
