@@ -117,7 +117,8 @@ void print_probes(const loom::SceneSpec& scene, const loom::RunSummary& summary,
   if (scene.probes.empty() || values.size() != scene.probes.size()) return;
   std::size_t width = 0;
   for (const auto& p : scene.probes) width = std::max(width, p.name.size());
-  std::cout << "probes at step " << summary.last_converged_step << " (t = " << summary.last_converged_time << "):\n";
+  std::cout << "probes at step " << summary.last_converged_step << " (t = "
+            << (scene.time.adaptive_probe != loom::kNoIndex ? summary.last_converged_time : summary.last_converged_step * scene.time.dt) << "):\n";
   for (std::size_t k = 0; k < values.size(); ++k) {
     char value[32];
     std::snprintf(value, sizeof value, "%.6g", values[k]);

@@ -70,6 +70,14 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
       return result;
     }
   }
+  if (callbacks.step_size && t < callbacks.end_time) {  // time.steps ran out before time.end
+    result.failed_step = steps + 1;
+    result.failed_dt = 0.0;
+    result.anomaly = true;
+    result.failure = "time.steps = " + std::to_string(steps) + " ran out at t = " + std::to_string(t) + ", before time.end = " +
+                     std::to_string(callbacks.end_time) + " (the adaptive steps were smaller than time.steps allows for): raise time.steps";
+    return result;
+  }
   result.completed = true;
   return result;
 }

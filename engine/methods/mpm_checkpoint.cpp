@@ -9,6 +9,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/methods/mpm_method.hpp"
 #include "engine/methods/run_output.hpp"
+#include "systems/loads/apply_grid_loads.hpp"
 
 namespace loom {
 namespace {
@@ -44,7 +45,9 @@ CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
   });
   m_.activity.version = 0;  // the first step activates the grid of the restored particles
   resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
-  // The probes of the restored step, which an adaptive step size reads before the next step writes them.
+  // The probes of the restored step, which an adaptive step size reads before the next step writes them (with the
+  // body forces of that step's time, which energy probes read).
+  apply_grid_loads(ctx_, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points, m_.traction_loc, m_.bc);
   evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView{m_.grid, m_.activity, m_.grid_nodes},
                            m_.system, m_.bc, 0, probe_values_);
   return h;

@@ -14,7 +14,8 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
   const int pn = bc.per_node;
   // 1. Prescribed values.
   for (const auto& p : bc.prescribed) {
-    const Vec2& X = grid_nodes.X[p.node];
+    // Method mpm_fem moves the nodes (X = X^ + u_n): a prescribed displacement is a function of the undeformed X^.
+    const Vec2 X = grid_nodes.u_n.used() ? Vec2(grid_nodes.X[p.node] - grid_nodes.u_n[p.node]) : grid_nodes.X[p.node];
     const Expression& g = bc.expressions[std::size_t(p.expression)];
     const bool displacement = p.dof % pn < 2;
     bc.target[p.dof] = displacement ? g(ctx.t, X.x(), X.y()) - g(ctx.t - ctx.dt, X.x(), X.y()) : g(ctx.t, X.x(), X.y());

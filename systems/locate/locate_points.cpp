@@ -92,7 +92,8 @@ Index find_quad9(const GridLayout& layout, const Cells& grid, const Nodes<2>& no
     if (!quad9_inverse_map(X, x, xi)) return kNoIndex;
     const int di = xi.x() > 1.0 + 1e-9 ? 1 : xi.x() < -1.0 - 1e-9 ? -1 : 0, dj = xi.y() > 1.0 + 1e-9 ? 1 : xi.y() < -1.0 - 1e-9 ? -1 : 0;
     const Index ni = std::clamp<Index>(i + di, 0, layout.nx - 1), nj = std::clamp<Index>(j + dj, 0, layout.ny - 1);
-    if ((ni == i && nj == j) || hop == layout.nx + layout.ny) return !layout.moves || (di == 0 && dj == 0) ? c : kNoIndex;
+    // At the grid's edge: a moving grid accepts a point within round-off of it (1e-6 of the cell), as a fixed one does.
+    if ((ni == i && nj == j) || hop == layout.nx + layout.ny) return !layout.moves || xi.cwiseAbs().maxCoeff() <= 1.0 + 1e-6 ? c : kNoIndex;
     i = ni, j = nj;
   }
 }

@@ -315,7 +315,9 @@ namespace {
 // every outer node given u = A X (one static-like step of 1e4 s, Neo-Hooke). A homogeneous deformation F = I + A
 // is then the exact discrete solution on both sides: every node, grid's and plate's, moves by A X and every
 // particle has F = I + A, to the Newton tolerance (with the plate 3 times stiffer the interface nodes are off by
-// 2e-3: the test can fail).
+// 2e-3: the test can fail). One step only: the grid's held nodes are spatial points, reset every step, so over
+// several steps the same expression would not prescribe a homogeneous motion of the material there; the FEM
+// side's later steps are the next test's.
 TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
   const std::string ux = "t * (0.01 * x + 0.02 * y) / 1e4", uy = "t * (-0.015 * x + 0.005 * y) / 1e4";
   std::string text =
@@ -361,6 +363,47 @@ TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
 namespace loom {
 namespace {
 
+// The FEM side over several steps: the plate's boundary nodes (its top row is the grid's bottom row) given
+// u = (t / 3e4) A X^, three static-like steps, a small disk far from it. Its interior nodes must follow the
+// homogeneous deformation at every step; from the second step on its cells start deformed (F_n = dX/dX^ != I) and
+// the prescribed values must be read at the undeformed X^ (the nodes have moved).
+TEST(MpmFemCoupling, ThePlateFollowsAHomogeneousDeformationOverSeveralSteps) {
+  const std::string ux = "t * (0.01 * x + 0.02 * y) / 3e4", uy = "t * (-0.015 * x + 0.005 * y) / 3e4";
+  std::string text =
+      "[scene]\nname = \"plate-patch\"\nmethod = \"mpm_fem\"\n"
+      "[time]\nintegrator = \"newmark\"\ndt = 1e4\nsteps = 3\nbeta = 0.3\ngamma = 0.5\n"
+      "[solver]\nresidual_relative = 1e-13\nresidual_absolute = 1e-14\n"
+      "[mpm]\nsoft_stiffness = { c1 = 0.1, c2 = 0.01 }\n"
+      "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 1.0e6\nnu = 0.3\ndensity = 1000.0\n"
+      "[[body]]\nname = \"disk\"\nmaterial = \"m\"\n"
+      "particles = { generator = \"disk\", centre = [1.0, 1.5], radius = 0.2, core_radius = 0.15, n_theta = 40, factor = 1.3 }\n"
+      "[[body]]\nname = \"plate\"\nmaterial = \"m\"\nelement = \"quad9\"\n"
+      "mesh = { generator = \"rectangle\", origin = [0.0, -0.5], size = [2.0, 0.5], divisions = [2, 1] }\n"
+      "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [0.0, 0.0]\nsize = [2.0, 2.0]\ndivisions = [2, 2]\nrefinements = 2\n"
+      "[output]\nevery = 0\n";
+  for (const char* box : {"[[0.0, -0.5], [0.0, 0.0]]", "[[2.0, -0.5], [2.0, 0.0]]", "[[0.0, 0.0], [2.0, 0.0]]", "[[0.0, -0.5], [2.0, -0.5]]"})
+    text += std::string("[[boundary]]\nname = \"side") + std::to_string(text.size()) + "\"\nregion = { box = " + box +
+            " }\ndisplacement = { x = \"" + ux + "\", y = \"" + uy + "\" }\n";
+  testing::TempDir dir("mpm_fem_plate_patch");
+  auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const MpmModel& m = run->model();
+  Eigen::Matrix2d A;
+  A << 0.01, 0.02, -0.015, 0.005;
+  double worst = 0.0;
+  Index interior = 0;
+  for (Index i = 0; i < m.grid_nodes.size(); ++i) {
+    if (!m.coupled_mesh.fem_node[std::size_t(i)]) continue;
+    const Vec2 X0 = m.grid_nodes.X[i] - m.grid_nodes.u_n[i];
+    worst = std::max(worst, (m.grid_nodes.u_n[i] - A * X0).norm());
+    interior += X0.x() > 1e-9 && X0.x() < 2.0 - 1e-9 && X0.y() > -0.5 + 1e-9 && X0.y() < -1e-9;
+  }
+  EXPECT_EQ(interior, 15 * 7);  // 8 x 4 cells of quad9: 17 x 9 nodes, 15 x 7 inside
+  EXPECT_LE(worst, 1e-12);
+  std::printf("[mpm_fem plate over three steps] the plate's nodes at A X^ to %.1e (%d inside)\n", worst, int(interior));
+}
+
 // A coupled run with an adaptive step, stopped and restarted, is the run that went straight through, bit for bit
 // (the checkpoint holds the nodes' reference positions, u_n, v and a; the restored probes give the next step's size).
 TEST(MpmFemCoupling, ARestartedAdaptiveRunIsTheStraightRun) {
@@ -382,6 +425,15 @@ TEST(MpmFemCoupling, ARestartedAdaptiveRunIsTheStraightRun) {
   const std::string a = testing::read_text(dir.file("straight/probes.csv")), b = testing::read_text(dir.file("split/probes.csv"));
   EXPECT_EQ(a, b);
   EXPECT_GT(std::count(a.begin(), a.end(), '\n'), 15);
+  // Too few steps for time.end: the run fails (exit 1) and says so, keeping what it wrote.
+  std::string few = text;
+  few.replace(few.find("steps = 100"), 11, "steps = 5\n");
+  testing::write_text(scene, few);
+  const auto short_run = testing::run_loom({"run", scene, "--quiet", "--threads", "1", "--out", dir.file("few")});
+  EXPECT_EQ(short_run.exit_code, 1) << short_run.err;
+  EXPECT_NE(short_run.err.find("time.steps = 5 ran out"), std::string::npos) << short_run.err;
+  const std::string rows = testing::read_text(dir.file("few/probes.csv"));
+  EXPECT_EQ(std::count(rows.begin(), rows.end(), '\n'), 7);  // the header, the start and the five steps
 }
 
 }  // namespace
