@@ -17,7 +17,8 @@ of a cell inside the body. It also prints the arrested half-width of the balance
 extension over the whole depth (docs/free_surface.md): rho g h^2 / 2 - 2 tau0 h = tau0 (L - x).
 
 usage: tools/arrest_balance.py RUN_DIR --tau0 20 [--rho 2300] [--g 9.81] [--area 0.005] [--csv FILE]
-(RUN_DIR holds probes.csv with wall_force probes symmetry_x and ground_x, and the frames *.vtu.)
+(RUN_DIR holds probes.csv with wall_force probes symmetry_x and ground_x, and the frames *.vtu; without frames, as a
+study's runs, only the walls' balance is given, with the probes front and height.)
 """
 import argparse
 import csv
@@ -33,7 +34,7 @@ from vtk.util.numpy_support import vtk_to_numpy
 def last_frame(run_dir):
     frames = sorted(glob.glob(os.path.join(run_dir, "*.vtu")))
     if not frames:
-        raise SystemExit(f"{run_dir}: no frame (*.vtu); run with output.every > 0")
+        return None, None
     reader = vtk.vtkXMLUnstructuredGridReader()
     reader.SetFileName(frames[-1])
     reader.Update()
@@ -91,6 +92,18 @@ def main():
     tau0, rho, g = a.tau0, a.rho, a.g
     frame, mesh = last_frame(a.run_dir)
     p = last_probes(a.run_dir)
+    if mesh is None:  # no frame (a study's run): the walls' balance from the probes front and height
+        hc, xf = p["height"], p["front"]
+        Fs, Fb = p["symmetry_x"], -p["ground_x"]
+        print(f"{a.run_dir} (probes only): t = {p['time']:g} s, x_f = {xf:.4f} m, h_c = {1e3 * hc:.2f} mm")
+        print(f"walls: F_s = {Fs:.4f}, F_b = {Fb:.4f} N/m; base F_b / (tau0 x_f) = {Fb / (tau0 * xf):.3f}; "
+              f"thrust F_s / (rho g h_c^2 / 2) = {Fs / (rho * g * hc**2 / 2):.3f}")
+        if a.area:
+            L0 = (3 * a.area / (2 * math.sqrt(2 * tau0 / (rho * g)))) ** (2.0 / 3.0)
+            L1, h1 = extension_corrected_half_width(tau0, rho, g, a.area)
+            print(f"half-width: shallow {L0:.4f} m, extension-corrected {L1:.4f} m; computed {xf:.4f} m "
+                  f"({100 * (xf / L0 - 1):+.1f} %, {100 * (xf / L1 - 1):+.1f} %)")
+        return
     x = vtk_to_numpy(mesh.GetPoints().GetData())[:, :2]
     hc, xf = x[:, 1].max(), x[:, 0].max()
     cell = math.sqrt(2.0 * xf * hc / max(1, mesh.GetNumberOfCells()))  # a cell's size, from the deposit's area
