@@ -8,7 +8,7 @@ top and its change per bounce (a body that bounces without loss keeps it; the dr
 
 usage: tools/bounce_summary.py RUN_DIR [RUN_DIR ...] [--probe centre_y] [--energy energy] [--gap 1.36] [--g 9.81]
        [--csv FILE]   (one row per run: impact time, first rebound fraction, energy lost by the first top)
-       [--plot FILE --labels A,B,...]   (the centre's height and the mechanical energy against time, one line per run)
+       [--plot FILE --labels "A;B;..."]   (the centre's height and the mechanical energy against time, one line per run)
 """
 import argparse
 import csv
@@ -70,7 +70,7 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        labels = a.labels.split(",") if a.labels else a.runs
+        labels = a.labels.split(";") if a.labels else a.runs
         fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
         for run, label in zip(a.runs, labels):
             r = read(run)
