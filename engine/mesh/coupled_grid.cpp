@@ -10,14 +10,6 @@
 namespace loom {
 namespace {
 
-// Coordinates of the node lattice along one axis: the cell edges and the mid-points between them.
-std::vector<double> lattice(const std::vector<double>& lines) {
-  std::vector<double> s;
-  for (std::size_t k = 0; k + 1 < lines.size(); ++k) s.push_back(lines[k]), s.push_back(0.5 * (lines[k] + lines[k + 1]));
-  s.push_back(lines.back());
-  return s;
-}
-
 // Index of the lattice coordinate equal to v within tol, or -1.
 int find_coordinate(const std::vector<double>& s, double v, double tol) {
   const auto it = std::lower_bound(s.begin(), s.end(), v - tol);
@@ -32,7 +24,7 @@ CoupledMesh build_coupled_grid(const GradedRectangle& grid, const std::vector<Fe
   CoupledMesh out;
   out.grid_cells = cells.size();
   const Index grid_nodes = nodes.size();
-  const std::vector<double> xs = lattice(layout.x_lines), ys = lattice(layout.y_lines);
+  const std::vector<double> xs = quad9_lattice(layout.x_lines), ys = quad9_lattice(layout.y_lines);
   const Index row = Index(xs.size());
   const double tol = layout.tolerance;
   const Vec2 lo = layout.lo, hi = layout.hi;

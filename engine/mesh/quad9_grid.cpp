@@ -22,6 +22,13 @@ std::vector<double> graded_lines(double origin, double length, int n, double g, 
   return lines;
 }
 
+std::vector<double> quad9_lattice(const std::vector<double>& lines) {
+  std::vector<double> s;
+  for (std::size_t k = 0; k + 1 < lines.size(); ++k) s.push_back(lines[k]), s.push_back(0.5 * (lines[k] + lines[k + 1]));
+  s.push_back(lines.back());
+  return s;
+}
+
 void build_quad9_grid(const GradedRectangle& r, Formulation formulation, Nodes<2>& nodes, Cells& cells, GridLayout& layout) {
   LOOM_CHECK(r.nx > 0 && r.ny > 0 && r.size.x() > 0.0 && r.size.y() > 0.0 && r.grading.minCoeff() > 0.0 && r.refinements >= 0, InputError,
              "a quad9 grid needs positive divisions, size and grading (got " << r.nx << " x " << r.ny << ")");
@@ -30,10 +37,10 @@ void build_quad9_grid(const GradedRectangle& r, Formulation formulation, Nodes<2
   layout.y_lines = graded_lines(r.origin.y(), r.size.y(), r.ny, r.grading.y(), r.refinements);
   const int NX = int(layout.x_lines.size()) - 1, NY = int(layout.y_lines.size()) - 1;
   const Index row = 2 * NX + 1;
-  auto lattice = [](const std::vector<double>& lines, int I) { return I % 2 == 0 ? lines[std::size_t(I / 2)] : 0.5 * (lines[std::size_t(I / 2)] + lines[std::size_t(I / 2 + 1)]); };
+  const std::vector<double> xs = quad9_lattice(layout.x_lines), ys = quad9_lattice(layout.y_lines);
   nodes.resize(row * Index(2 * NY + 1));
   for (int J = 0; J <= 2 * NY; ++J)
-    for (int I = 0; I <= 2 * NX; ++I) nodes.X[Index(J) * row + I] = Vec2(lattice(layout.x_lines, I), lattice(layout.y_lines, J));
+    for (int I = 0; I <= 2 * NX; ++I) nodes.X[Index(J) * row + I] = Vec2(xs[std::size_t(I)], ys[std::size_t(J)]);
 
   cells = Cells(CellType::quad9, formulation);
   auto& conn = cells.nodes.values();

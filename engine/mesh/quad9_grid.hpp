@@ -5,6 +5,8 @@
 // engine/mesh/quad9_shape.hpp; the lattice of (2 NX + 1) x (2 NY + 1) nodes is numbered row by row.
 #pragma once
 
+#include <vector>
+
 #include "engine/core/types.hpp"
 #include "engine/store/cells.hpp"
 #include "engine/store/grid_layout.hpp"
@@ -23,6 +25,9 @@ struct GradedRectangle {
 // Cell edges of one axis: n coarse cells of total length `length` from `origin` with ratio g, each split
 // into 2^J equal parts.
 std::vector<double> graded_lines(double origin, double length, int n, double g, int refinements);
+
+// Node coordinates along one axis of a quad9 lattice: the cell edges and the mid-points between them (2 n + 1).
+std::vector<double> quad9_lattice(const std::vector<double>& lines);
 
 // Throws InputError for an empty rectangle.
 void build_quad9_grid(const GradedRectangle& spec, Formulation formulation, Nodes<2>& nodes, Cells& cells, GridLayout& layout);

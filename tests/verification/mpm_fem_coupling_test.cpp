@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "engine/methods/mpm_model.hpp"
 #include "tests/support/test_support.hpp"
@@ -51,6 +52,17 @@ std::string falling_scene(bool gravity_on_plate) {
          "grading = [1.0, 0.8]\nrefinements = 2\n"
          "[[probe]]\nname = \"uy\"\nkind = \"point\"\nat = [0.5, -0.2]\ncomponent = \"y\"\n"
          "[output]\nevery = 0\n";
+}
+
+// The linear field u = (t / T) A X of the patch tests, prescribed on the nodes of each box.
+const Eigen::Matrix2d kA = (Eigen::Matrix2d() << 0.01, 0.02, -0.015, 0.005).finished();
+std::string held_on_linear_field(const std::vector<std::string>& boxes, const std::string& T) {
+  const std::string ux = "t * (0.01 * x + 0.02 * y) / " + T, uy = "t * (-0.015 * x + 0.005 * y) / " + T;
+  std::string text;
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+    text += "[[boundary]]\nname = \"side" + std::to_string(k) + "\"\nregion = { box = " + boxes[k] + " }\ndisplacement = { x = \"" + ux +
+            "\", y = \"" + uy + "\" }\n";
+  return text;
 }
 
 double u_factor(int n) {
@@ -134,11 +146,6 @@ TEST(MpmFemCoupling, DiskAndPlateFallTogetherAsNewmarksClosedForm) {
               worst_u, worst_v, worst_F, worst_node, worst_grid, summary.newton_iterations);
 }
 
-}  // namespace
-}  // namespace loom
-
-namespace loom {
-namespace {
 
 // The centre particle's (x, y) history of a rolling-disk scene of seed 004, 40 steps of 0.01 s, with a lighter disk
 // (n_theta = 150, factor 1.2) than the paper's.
@@ -190,11 +197,6 @@ TEST(MpmFemCoupling, AStiffPlateRollsTheDiskAsTheRigidGroundDoes) {
               ground.x.back(), same_x, same_y, plate_x, plate_y);
 }
 
-}  // namespace
-}  // namespace loom
-
-namespace loom {
-namespace {
 
 // time.adaptive_dt: each step's size is the formula at the previous step's probe value, and the run ends at
 // time.end exactly (the last step shortened), whatever time.steps allows beyond it.
@@ -224,11 +226,6 @@ TEST(AdaptiveTimeStep, EachStepTakesTheFormulaAtTheProbesLastValueAndTheRunEndsA
   std::printf("[adaptive dt] %zu steps to t = %.3f: %d of 0.02, %d of 0.0125 or the last one's remainder\n", t.size() - 1, t.back(), coarse, fine);
 }
 
-}  // namespace
-}  // namespace loom
-
-namespace loom {
-namespace {
 
 // The block's weight reaches the plate's clamp through the shared nodes: a block of particles (sampled from a
 // rectangle mesh) resting on the plate, one step of 1000 s (the inertia m / (beta dt^2) is then 1e-9 of the
@@ -261,11 +258,6 @@ TEST(MpmFemCoupling, TheClampCarriesTheWeightOfABlockOnThePlate) {
   std::printf("[mpm_fem block on plate] clamp reaction (%.6e, %.10e) N/m against the weight %.10e N/m\n", Rx, Ry, weight);
 }
 
-}  // namespace
-}  // namespace loom
-
-namespace loom {
-namespace {
 
 // Method mpm with several bodies (scheme particle_newmark, the MPM side of the B4 comparison): two disks in cells of
 // their own, each under its own body force, fall as Newmark's closed form says, each particle by its body's force.
@@ -303,11 +295,6 @@ TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
   std::printf("[mpm, two bodies] %d particles: u against each body's closed form %.1e\n", int(particles.X.size()), worst);
 }
 
-}  // namespace
-}  // namespace loom
-
-namespace loom {
-namespace {
 
 // The patch test across the interface: a grid filled with particles whose quadrature is exact for a constant
 // stress (each quad9 cell cut into two triangles with 6 Dunavant points each, degree 4 >= the degree 3 of grad N),
@@ -319,7 +306,6 @@ namespace {
 // several steps the same expression would not prescribe a homogeneous motion of the material there; the FEM
 // side's later steps are the next test's.
 TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
-  const std::string ux = "t * (0.01 * x + 0.02 * y) / 1e4", uy = "t * (-0.015 * x + 0.005 * y) / 1e4";
   std::string text =
       "[scene]\nname = \"patch\"\nmethod = \"mpm_fem\"\n"
       "[time]\nintegrator = \"newmark\"\ndt = 1e4\nsteps = 1\nbeta = 0.3\ngamma = 0.5\n"
@@ -332,16 +318,13 @@ TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
       "mesh = { generator = \"rectangle\", origin = [0.0, -0.5], size = [2.0, 0.5], divisions = [2, 1] }\n"
       "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [0.0, 0.0]\nsize = [2.0, 1.0]\ndivisions = [2, 1]\nrefinements = 1\n"
       "[output]\nevery = 0\n";
-  for (const char* box : {"[[0.0, -0.5], [0.0, 1.0]]", "[[2.0, -0.5], [2.0, 1.0]]", "[[0.0, 1.0], [2.0, 1.0]]", "[[0.0, -0.5], [2.0, -0.5]]"})
-    text += std::string("[[boundary]]\nname = \"side") + std::to_string(text.size()) + "\"\nregion = { box = " + box +
-            " }\ndisplacement = { x = \"" + ux + "\", y = \"" + uy + "\" }\n";
+  text += held_on_linear_field({"[[0.0, -0.5], [0.0, 1.0]]", "[[2.0, -0.5], [2.0, 1.0]]", "[[0.0, 1.0], [2.0, 1.0]]", "[[0.0, -0.5], [2.0, -0.5]]"}, "1e4");
   testing::TempDir dir("mpm_fem_patch");
   auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
   const RunSummary summary = run->run();
   ASSERT_TRUE(summary.converged) << summary.failure;
   const MpmModel& m = run->model();
-  Eigen::Matrix2d A;
-  A << 0.01, 0.02, -0.015, 0.005;
+  const Eigen::Matrix2d& A = kA;
   double worst_node = 0.0, worst_F = 0.0;
   for (Index i = 0; i < m.grid_nodes.size(); ++i) {
     const Vec2 X0 = m.grid_nodes.X[i] - m.grid_nodes.u_n[i];  // undeformed
@@ -357,18 +340,12 @@ TEST(MpmFemCoupling, AHomogeneousDeformationPassesTheInterfaceExactly) {
               int(m.particles.X.size()), worst_F);
 }
 
-}  // namespace
-}  // namespace loom
-
-namespace loom {
-namespace {
 
 // The FEM side over several steps: the plate's boundary nodes (its top row is the grid's bottom row) given
 // u = (t / 3e4) A X^, three static-like steps, a small disk far from it. Its interior nodes must follow the
 // homogeneous deformation at every step; from the second step on its cells start deformed (F_n = dX/dX^ != I) and
 // the prescribed values must be read at the undeformed X^ (the nodes have moved).
 TEST(MpmFemCoupling, ThePlateFollowsAHomogeneousDeformationOverSeveralSteps) {
-  const std::string ux = "t * (0.01 * x + 0.02 * y) / 3e4", uy = "t * (-0.015 * x + 0.005 * y) / 3e4";
   std::string text =
       "[scene]\nname = \"plate-patch\"\nmethod = \"mpm_fem\"\n"
       "[time]\nintegrator = \"newmark\"\ndt = 1e4\nsteps = 3\nbeta = 0.3\ngamma = 0.5\n"
@@ -381,16 +358,13 @@ TEST(MpmFemCoupling, ThePlateFollowsAHomogeneousDeformationOverSeveralSteps) {
       "mesh = { generator = \"rectangle\", origin = [0.0, -0.5], size = [2.0, 0.5], divisions = [2, 1] }\n"
       "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [0.0, 0.0]\nsize = [2.0, 2.0]\ndivisions = [2, 2]\nrefinements = 2\n"
       "[output]\nevery = 0\n";
-  for (const char* box : {"[[0.0, -0.5], [0.0, 0.0]]", "[[2.0, -0.5], [2.0, 0.0]]", "[[0.0, 0.0], [2.0, 0.0]]", "[[0.0, -0.5], [2.0, -0.5]]"})
-    text += std::string("[[boundary]]\nname = \"side") + std::to_string(text.size()) + "\"\nregion = { box = " + box +
-            " }\ndisplacement = { x = \"" + ux + "\", y = \"" + uy + "\" }\n";
+  text += held_on_linear_field({"[[0.0, -0.5], [0.0, 0.0]]", "[[2.0, -0.5], [2.0, 0.0]]", "[[0.0, 0.0], [2.0, 0.0]]", "[[0.0, -0.5], [2.0, -0.5]]"}, "3e4");
   testing::TempDir dir("mpm_fem_plate_patch");
   auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
   const RunSummary summary = run->run();
   ASSERT_TRUE(summary.converged) << summary.failure;
   const MpmModel& m = run->model();
-  Eigen::Matrix2d A;
-  A << 0.01, 0.02, -0.015, 0.005;
+  const Eigen::Matrix2d& A = kA;
   double worst = 0.0;
   Index interior = 0;
   for (Index i = 0; i < m.grid_nodes.size(); ++i) {
