@@ -30,10 +30,14 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     return report;
   };
   bool first = true;
+  bool have_tangent = false;  // the last assembly's tangent is at the current iterate
+  int iteration = 0;
   auto assemble = [&]() {
     ScopedTimer t(timers, "newton/assemble");
-    const bool tangent = first || !s.tangent_once_per_step;
+    const bool lazy = s.expected_iterations > 0 && iteration >= s.expected_iterations && !s.tangent_once_per_step;
+    const bool tangent = first || (!s.tangent_once_per_step && !lazy);
     first = false;
+    have_tangent = tangent || s.tangent_once_per_step;
     return p.assemble(tangent);
   };
 
@@ -77,6 +81,12 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
 
   for (int it = 1; it <= s.max_iterations; ++it) {
     iteration_mark.set(it);
+    if (!have_tangent) {  // lazy tangent: the residual alone did not converge
+      ScopedTimer t(timers, "newton/assemble");
+      if (!p.assemble(true)) return fail("a cell inverted during the Newton iterations");
+      have_tangent = true;
+    }
+    iteration = it;
     bool solved;
     {
       ScopedTimer t(timers, "newton/solve");

@@ -27,6 +27,12 @@ struct NewtonSettings {
   // Modified Newton (seed 001 §3.6): the tangent of the first iteration is assembled and factorised once per
   // step; later iterations assemble the residual only and reuse the factorisation.
   bool tangent_once_per_step = false;
+  // Lazy tangent: from iteration `expected_iterations` on (the previous step's count; 0: never), the
+  // assembly after an update computes the residual only, and the tangent is assembled at the same iterate
+  // only if that residual has not converged. The converged step then skips a tangent it would not use
+  // (a linear problem: one of its two assemblies per step). Only for problems whose residual-only
+  // assembly gives the residual of the full one bit for bit, and that keep no state between assemblies.
+  int expected_iterations = 0;
   std::ostream* log = nullptr;  // one line per iteration (residual, step length) when set
 };
 

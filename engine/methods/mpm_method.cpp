@@ -145,6 +145,7 @@ void MpmRun::newton_node() {
   update_grid_kinematics(ctx_, m_.grid_nodes);  // grid Newmark: the predictor from the reset grid (lines 13-15)
   MpmNewtonProblem problem(ctx_, m_, solver_, timers_);
   NewtonSettings settings = newton_settings_of(scene_.solver);
+  settings.expected_iterations = status_.iterations;  // the last step's: its last assembly needs no tangent
   if (options_.verbose && options_.log) {
     *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
     settings.log = options_.log;

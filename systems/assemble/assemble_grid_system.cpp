@@ -39,17 +39,19 @@ void assemble_displacement(const Args& x) {
     for (int a = 0; a < NC; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
     ElementVector<NC> r = ElementVector<NC>::Zero();
     ElementMatrix<NC> K = ElementMatrix<NC>::Zero();
+    const Index entry = x.act.active_index[std::size_t(c)];
+    ElementMatrix<NC>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     const Index* pts = x.loc.points_in(c);
     for (Index k = 0; k < x.loc.count_in(c); ++k) {
       const Index p = pts[k];
       const Mat3& F_n = x.particles.F[p];
       const double Vn = x.particles.volume[p] * F_n.determinant();
       const CornerGradients<NC> dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
-      const bool ok = std::visit([&](const auto& m) { return add_displacement_point<NC>(m, du, dN, Vn, F_n, x.loc.F[p], r, &K); },
+      const bool ok = std::visit([&](const auto& m) { return add_displacement_point<NC>(m, du, dN, Vn, F_n, x.loc.F[p], r, K_needed); },
                                  x.materials[std::size_t(x.particles.body[p])].model);
       if (!ok) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
     }
-    scatter_cell<2 * NC>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    scatter_cell<2 * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
   });
 }
 
@@ -67,6 +69,8 @@ void assemble_mixed(const Args& x) {
     }
     UpVector<NC> r = UpVector<NC>::Zero();
     UpMatrix<NC> K = UpMatrix<NC>::Zero();
+    const Index entry = x.act.active_index[std::size_t(c)];
+    UpMatrix<NC>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     PppAccumulator<NC> ppp;
     const Index* pts = x.loc.points_in(c);
     double inv_mu = 0.0;
@@ -90,11 +94,11 @@ void assemble_mixed(const Args& x) {
       st.tau1 = spec.tau_c1 * x.grid.measure[c] / (2.0 * m.mu);  // eq 21, h^2 = cell area
       st.tau2 = 2.0 * spec.tau_c2 * m.mu;
       st.c_a = x.dynamic ? newmark_stiffness(dt) : 0.0;
-      if (!add_up_point<NC>(m, st, pt, cell, x.loc.F[p], r, &K)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
+      if (!add_up_point<NC>(m, st, pt, cell, x.loc.F[p], r, K_needed)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
       if (spec.stabilisation == Stabilisation::ppp) ppp.add(pt.N, Vn), inv_mu = 1.0 / m.mu, use_ppp = true;
     }
-    if (use_ppp) ppp.apply(inv_mu, cell.p, r, &K);
-    scatter_cell<3 * NC>(x.act.active_index[std::size_t(c)], x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    if (use_ppp) ppp.apply(inv_mu, cell.p, r, K_needed);
+    scatter_cell<3 * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
   });
 }
 

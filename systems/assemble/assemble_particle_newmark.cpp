@@ -80,13 +80,14 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
     for (int a = 0; a < NEN; ++a) du.row(a) = g.u[grid.node(c, a)].transpose();
     ElementVector<NEN> r = ElementVector<NEN>::Zero();
     ElementMatrix<NEN> K = ElementMatrix<NEN>::Zero();
+    const bool need_K = tangent || cell_lags(entry, system.scatter[0], bc, g, system.dofs);  // the Dirichlet lift needs K
     if constexpr (NEN == 9) {
       if (fem_cell) {
         const Index b = grid.body[c];
         const MaterialSpec& ms = scene.materials[std::size_t(scene.bodies[std::size_t(b)].material)];
         const double rho_inertia = scene.bodies[std::size_t(b)].unit_inertia ? 1.0 : ms.density;
         const Vec2* bf = bc.fem_body_force.empty() ? nullptr : &bc.fem_body_force[std::size_t(9 * (c - fem_from))];
-        const bool ok = std::visit([&](const auto& m) { return add_fem_cell(m, tn, g, grid, c, rho_inertia, ms.density, bf, du, r, K, tangent); },
+        const bool ok = std::visit([&](const auto& m) { return add_fem_cell(m, tn, g, grid, c, rho_inertia, ms.density, bf, du, r, K, need_K); },
                                    materials[std::size_t(b)].model);
         if (!ok) return void(inverted.fetch_add(1, std::memory_order_relaxed));
         scatter_cell<2 * NEN>(entry, system.scatter[0], bc, g, tangent, r, K, system);
@@ -116,7 +117,7 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
       pt.F_n = particles.F[p];
       pt.v_n = particles.v[p], pt.a_n = particles.a[p];
       pt.b = bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];
-      const bool ok = std::visit([&](const auto& m) { return add_particle_newmark_point<NEN>(m, tn, pt, du, loc.F[p], r, tangent ? &K : nullptr); },
+      const bool ok = std::visit([&](const auto& m) { return add_particle_newmark_point<NEN>(m, tn, pt, du, loc.F[p], r, need_K ? &K : nullptr); },
                                  materials[std::size_t(particles.body[p])].model);
       if (!ok) return void(inverted.fetch_add(1, std::memory_order_relaxed));
     }

@@ -27,6 +27,16 @@ inline double dof_value(const Nodes<2>& g, Index dof, int pn) {
   return comp < 2 ? g.u[node][comp] : g.p[node];
 }
 
+// Whether some prescribed dof of a cell lags its target: its residual then needs the cell's K (the lift
+// below), even when no tangent is assembled.
+inline bool cell_lags(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, const DofMap& dofs) {
+  for (int k = 0; k < sc.dofs_per_cell; ++k) {
+    const Index dof = sc.cell_dof(entry, k);
+    if (dofs.kind[std::size_t(dof)] == DofKind::prescribed && bc.target[dof] != dof_value(g, dof, dofs.per_node)) return true;
+  }
+  return false;
+}
+
 template <int NE>
 void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, bool tangent,
                   Eigen::Matrix<double, NE, 1>& r, const Eigen::Matrix<double, NE, NE>& K, LinearSystem& system) {

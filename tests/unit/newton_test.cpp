@@ -269,4 +269,57 @@ TEST(SolveNewton, TangentOncePerStepAssemblesItOnce) {
   EXPECT_GT(rep.iterations, 4);  // linear convergence of the modified Newton method
 }
 
+// Lazy tangent (NewtonSettings::expected_iterations): the same iterates, residuals and solution bit for bit
+// whatever the expectation, with one tangent fewer when the expectation is met, one residual-only
+// assembly more when it is not, and the tangent always at the iterate that is solved with.
+TEST(SolveNewton, LazyTangentChangesNoIterateAndSkipsTheUnusedTangent) {
+  struct Counting : ToyProblem {
+    using ToyProblem::ToyProblem;
+    int tangents = 0, assemblies = 0;
+    Eigen::VectorXd tangent_at;
+    bool assemble(bool with_tangent) override {
+      tangents += with_tangent, ++assemblies;
+      if (with_tangent) tangent_at = x;
+      return ToyProblem::assemble(with_tangent);
+    }
+    bool solve() override {
+      EXPECT_EQ(tangent_at, x) << "solved with a tangent of another iterate";
+      return ToyProblem::solve();
+    }
+  };
+  auto make = [] {
+    return Counting(vec({0.5, -0.3}), [](const Eigen::VectorXd& x) { return vec({std::atan(x(0)) + 0.1 * x(1), x(1) * x(1) * x(1) + x(1) - 0.2}); },
+                    [](const Eigen::VectorXd& x) {
+                      Eigen::MatrixXd J(2, 2);
+                      J << 1.0 / (1.0 + x(0) * x(0)), 0.1, 0.0, 3.0 * x(1) * x(1) + 1.0;
+                      return J;
+                    });
+  };
+  Timers timers;
+  Counting eager = make();
+  const NewtonReport ref = solve_newton(eager, strict(), timers);
+  ASSERT_TRUE(ref.converged) << ref.failure;
+  ASSERT_GE(ref.iterations, 3);
+  EXPECT_EQ(eager.tangents, ref.iterations + 1);  // one per assembly: the last is never used
+  for (int expected : {1, ref.iterations - 1, ref.iterations, ref.iterations + 2}) {
+    Counting lazy = make();
+    NewtonSettings s = strict();
+    s.expected_iterations = expected;
+    const NewtonReport rep = solve_newton(lazy, s, timers);
+    ASSERT_TRUE(rep.converged) << rep.failure;
+    EXPECT_EQ(rep.iterations, ref.iterations) << "expected " << expected;
+    EXPECT_EQ(rep.residuals, ref.residuals) << "expected " << expected;
+    EXPECT_EQ(lazy.x, eager.x) << "expected " << expected;
+    const int n = ref.iterations;
+    if (expected <= n) {
+      EXPECT_EQ(lazy.tangents, n) << "expected " << expected;  // every solve's, not the last assembly's
+      // From the expected iteration on, each unconverged residual is assembled again with its tangent.
+      EXPECT_EQ(lazy.assemblies, 1 + n + (n - expected)) << "expected " << expected;
+    } else {  // never lazy
+      EXPECT_EQ(lazy.tangents, n + 1) << "expected " << expected;
+      EXPECT_EQ(lazy.assemblies, n + 1) << "expected " << expected;
+    }
+  }
+}
+
 }  // namespace loom

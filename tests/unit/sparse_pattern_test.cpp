@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include "engine/core/parallel.hpp"
 #include "engine/linalg/sparse_pattern.hpp"
 #include "engine/mesh/generators.hpp"
 
@@ -161,6 +162,49 @@ TEST(BuildScatter, AssemblyThroughSlotsEqualsDenseAssembly) {
       }
   }
   EXPECT_LE((Eigen::MatrixXd(p.matrix) - dense).norm(), 1e-14);
+}
+
+// A grid large enough for the parallel scatter, three dofs per node (u, p) with random kinds and a subset of
+// the cells, as an MPM grid's active part: every slot addresses its row and column.
+TEST(BuildScatter, SlotsOfAMixedSubsetGridAddressTheirEntries) {
+  RectangleSpec spec;
+  spec.nx = 30, spec.ny = 20;
+  const MeshData m = generate_rectangle(spec);
+  Cells cells;
+  cells.nodes.values() = m.triangles;
+  cells.body.assign(m.n_triangles(), 0);
+  std::mt19937 rng(11);
+  std::vector<Index> subset;
+  for (Index c = 0; c < cells.size(); ++c)
+    if (rng() % 4 != 0) subset.push_back(c);
+  std::vector<char> used(std::size_t(Index(m.X.size())), 0);
+  for (Index c : subset)
+    for (int a = 0; a < 3; ++a) used[std::size_t(cells.node(c, a))] = 1;
+  std::vector<K> kinds(std::size_t(3 * Index(m.X.size())), K::absent);
+  for (Index i = 0; i < Index(m.X.size()); ++i)
+    for (int d = 0; d < 3; ++d)
+      if (used[std::size_t(i)]) kinds[std::size_t(3 * i + d)] = rng() % 5 == 0 ? K::prescribed : K::free;
+  DofMap dofs;
+  dofs.build(3, kinds);
+  SparsePattern p;
+  build_pattern({&cells}, dofs, p, {&subset});
+  CellScatter sc;
+  build_scatter(cells, dofs, p, sc, &subset);
+  ASSERT_GT(Index(subset.size()), 2 * kParallelGrain);
+  for (Index e = 0; e < Index(subset.size()); ++e)
+    for (int a = 0; a < 9; ++a) {
+      ASSERT_EQ(sc.cell_dof(e, a), 3 * cells.node(subset[std::size_t(e)], a / 3) + a % 3);
+      for (int b = 0; b < 9; ++b) {
+        const Index row = dofs.equation[std::size_t(sc.cell_dof(e, a))];
+        const Index col = dofs.equation[std::size_t(sc.cell_dof(e, b))];
+        const Index s = sc.matrix_slot(e, a, b);
+        if (row == kNoIndex || col == kNoIndex) {
+          ASSERT_EQ(s, kNoIndex);
+          continue;
+        }
+        ASSERT_EQ(s, find_slot(p, row, col)) << "cell entry " << e << ", " << a << ", " << b;
+      }
+    }
 }
 
 }  // namespace loom
