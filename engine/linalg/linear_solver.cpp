@@ -73,13 +73,17 @@ LinearSolve::LinearSolve(LinearSolverKind kind) : kind_(kind) {
 
 LinearSolve::~LinearSolve() = default;
 
+bool LinearSolve::analyze(const SparsePattern& pattern) {
+  if (analysed_version_ == pattern.version) return false;
+  solver_->analyze(pattern.matrix);
+  analysed_version_ = pattern.version;
+  ++analyses_;
+  return true;
+}
+
 bool LinearSolve::factorize(const SparsePattern& pattern) {
   for (;;) {
-    if (analysed_version_ != pattern.version) {
-      solver_->analyze(pattern.matrix);
-      analysed_version_ = pattern.version;
-      ++analyses_;
-    }
+    analyze(pattern);
     ++factorizations_;
     if (solver_->factorize(pattern.matrix)) {
       const double rcond = solver_->rcond();

@@ -35,6 +35,10 @@ class LinearSolve {
  public:
   explicit LinearSolve(LinearSolverKind kind);
   ~LinearSolve();
+  // The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) of pattern.matrix, if its
+  // pattern is not the one analysed last; true if it ran.
+  bool analyze(const SparsePattern& pattern);
+  bool analysed(const SparsePattern& pattern) const { return analysed_version_ == pattern.version; }
   // Factorizes pattern.matrix (analysing it first if its pattern is new); false if it is singular.
   bool factorize(const SparsePattern& pattern);
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);

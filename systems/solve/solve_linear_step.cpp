@@ -9,7 +9,13 @@ namespace loom {
 LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers, bool refactorize) {
   if (refactorize) {
     ScopedTimer t(timers, "newton/solve/factorize");
-    if (system.dofs.n_free > 0 && !solver.factorize(system.pattern)) return LinearSolveStatus::singular;
+    if (system.dofs.n_free > 0) {
+      if (!solver.analysed(system.pattern)) {  // timed apart: its count is the number of new sparsity patterns
+        ScopedTimer a(timers, "newton/solve/factorize/analyze");
+        solver.analyze(system.pattern);
+      }
+      if (!solver.factorize(system.pattern)) return LinearSolveStatus::singular;
+    }
   }
   {
     ScopedTimer t(timers, "newton/solve/back_substitute");
