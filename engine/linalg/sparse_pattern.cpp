@@ -91,7 +91,8 @@ Index find_slot(const SparsePattern& pattern, Index row, Index col) {
 }
 
 void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter,
-                   const std::vector<Index>* subset) {
+                   const std::vector<Index>* subset, bool* complete) {
+  std::atomic<bool> all_found{true};
   const int pn = dofs.per_node;
   const int nd = cells.stride * pn;
   const SparseMatrix& A = pattern.matrix;
@@ -129,6 +130,10 @@ void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& 
           if (row == kNoIndex) continue;
           if (pos == kNoIndex) pos = Index(std::lower_bound(begin, end, row) - A.innerIndexPtr());
           else ++pos;
+          if (complete && !(pos < A.outerIndexPtr()[col0 + 1] && A.innerIndexPtr()[pos] == row)) {
+            all_found.store(false, std::memory_order_relaxed);
+            return;
+          }
           LOOM_ASSERT(pos < A.outerIndexPtr()[col0 + 1] && A.innerIndexPtr()[pos] == row, "pattern misses a coupling of cell " << c);
           slot(an * pn + k, b0) = pos;
         }
@@ -145,6 +150,7 @@ void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& 
   };
   if (dofs.ties.empty()) {
     for_each_index(n_cells, cell_slots);
+    if (complete) *complete = all_found.load();
     return;
   }
   for (Index c = 0; c < n_cells; ++c) {
@@ -162,6 +168,7 @@ void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& 
     scatter.tie_offset[std::size_t(c) + 1] = Index(scatter.local_ties.size());
     cell_slots(c);
   }
+  if (complete) *complete = all_found.load();
 }
 
 }  // namespace loom

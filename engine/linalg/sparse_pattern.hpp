@@ -46,8 +46,9 @@ void build_pattern(const std::vector<const Cells*>& blocks, const DofMap& dofs, 
 // Value index of entry (row, col) of the pattern, or kNoIndex.
 Index find_slot(const SparsePattern& pattern, Index row, Index col);
 // Builds the scatter of one block into an already built pattern; with `subset`, entry k of the scatter is
-// cell (*subset)[k].
+// cell (*subset)[k]. Every coupling of the cells must be in the pattern; with `complete`, a missing one
+// sets *complete = false instead (and the scatter is not usable).
 void build_scatter(const Cells& cells, const DofMap& dofs, const SparsePattern& pattern, CellScatter& scatter,
-                   const std::vector<Index>* subset = nullptr);
+                   const std::vector<Index>* subset = nullptr, bool* complete = nullptr);
 
 }  // namespace loom

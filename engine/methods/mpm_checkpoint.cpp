@@ -1,8 +1,9 @@
 // Checkpoints of the mpm recipe: every column of the particles, the traction and probe points and their
 // grid locations (the walk of the next locate starts from the cell a point was in), the grid nodes, and the
-// run's header (engine/methods/run_output.hpp). The grid's active set, dof numbering and pattern follow
-// from the particles' cells and are rebuilt by the first step after a restore, as a step rebuilds them
-// whenever the active set changes.
+// run's header (engine/methods/run_output.hpp), and the active set the grid's Newton system was built
+// around (systems/locate/grid_system.hpp). The active set follows from the particles' cells; the first step
+// after a restore builds the system around the stored set and fits the active set into it, as the run it
+// continues did.
 #include <string>
 #include <utility>
 
@@ -31,6 +32,7 @@ void MpmRun::write_checkpoint(int step) {
   CheckpointWriter w;
   write_checkpoint_header(w, checkpoint_header(method_name(scene_.scene.method), ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
   visit_stores(std::as_const(m_), [&](const char* name, const auto& store) { w.store(name, store); });
+  w.vector("grid_system_base", m_.activity.system_base);
   store_checkpoint(w, options_, step);
 }
 
@@ -44,6 +46,10 @@ CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
     r.expect_size(std::string(name) + " entries", std::size_t(store.size()), sizes[k++]);
   });
   m_.activity.version = 0;  // the first step activates the grid of the restored particles
+  // ... in the Newton system the run had (grid_system.hpp): the same matrices, factorised in the same order.
+  m_.activity.system_cells.clear();
+  m_.activity.system_base.clear();
+  if (r.has("grid_system_base")) r.vector("grid_system_base", m_.activity.system_base);
   resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
   // The probes of the restored step, which an adaptive step size reads before the next step writes them (with the
   // body forces of that step's time, which energy probes read).

@@ -39,7 +39,7 @@ void assemble_displacement(const Args& x) {
     for (int a = 0; a < NC; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
     ElementVector<NC> r = ElementVector<NC>::Zero();
     ElementMatrix<NC> K = ElementMatrix<NC>::Zero();
-    const Index entry = x.act.active_index[std::size_t(c)];
+    const Index entry = x.act.scatter_entry[std::size_t(c)];
     ElementMatrix<NC>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     const Index* pts = x.loc.points_in(c);
     for (Index k = 0; k < x.loc.count_in(c); ++k) {
@@ -69,7 +69,7 @@ void assemble_mixed(const Args& x) {
     }
     UpVector<NC> r = UpVector<NC>::Zero();
     UpMatrix<NC> K = UpMatrix<NC>::Zero();
-    const Index entry = x.act.active_index[std::size_t(c)];
+    const Index entry = x.act.scatter_entry[std::size_t(c)];
     UpMatrix<NC>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     PppAccumulator<NC> ppp;
     const Index* pts = x.loc.points_in(c);
@@ -172,6 +172,7 @@ AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOp
     const Index eq = dofs.equation[std::size_t(dof)];
     if (eq != kNoIndex) system.residual[eq] = system.residual_full[dof];
   });
+  pin_dormant_dofs(activity, opt.tangent, system);
   return {inverted.load()};
 }
 

@@ -75,7 +75,7 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
   for_each_active_cell_by_colour(act, [&](Index c) {
     const bool fem_cell = fem_from != kNoIndex && c >= fem_from;
     if ((pass == CellPass::particle_cells && fem_cell) || (pass == CellPass::fem_cells && !fem_cell)) return;
-    const Index entry = act.active_index[std::size_t(c)];
+    const Index entry = act.scatter_entry[std::size_t(c)];
     NodalVectors<NEN> du;
     for (int a = 0; a < NEN; ++a) du.row(a) = g.u[grid.node(c, a)].transpose();
     ElementVector<NEN> r = ElementVector<NEN>::Zero();
@@ -95,7 +95,7 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
       }
     }
     // 1. Soft stiffness (constant and linear: K du), on the flags of the step's active set.
-    const double C = act.inside_nodes.empty() ? 0.0 : soft.factor(act.inside_nodes[std::size_t(entry)], NEN);
+    const double C = act.inside_nodes.empty() ? 0.0 : soft.factor(act.inside_nodes[std::size_t(act.active_index[std::size_t(c)])], NEN);
     if (C > 0.0) {
       ElementMatrix<NEN> Ks = ElementMatrix<NEN>::Zero();
       for_each_cell_gauss_point<NEN>(grid, g, c, [&](const NodalVectors<NEN>& dN, double w) { add_soft_stiffness_point<NEN>(dN, mu * C * w, Ks); });
@@ -157,6 +157,7 @@ AssemblyResult assemble_particle_newmark(const StepContext& ctx, bool tangent, c
     if (dofs.kind[std::size_t(dof)] != DofKind::absent) system.residual_full[dof] -= bc.external[dof];
     if (eq != kNoIndex) system.residual[eq] = system.residual_full[dof];
   });
+  pin_dormant_dofs(activity, tangent, system);
   return {inverted.load()};
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "engine/core/parallel.hpp"
 #include "engine/linalg/linear_system.hpp"
@@ -35,6 +36,23 @@ inline bool cell_lags(Index entry, const CellScatter& sc, const BoundaryConditio
     if (dofs.kind[std::size_t(dof)] == DofKind::prescribed && bc.target[dof] != dof_value(g, dof, dofs.per_node)) return true;
   }
   return false;
+}
+
+// Dormant dofs (GridActivity::dormant_dofs): an identity row scaled to the mean diagonal of the others (so
+// that the factor's pivot ratio does not change) and a zero residual, so that their increment is zero and
+// the other equations are those of the active set alone. Called after the cells and nodal terms.
+inline void pin_dormant_dofs(const GridActivity& act, bool tangent, LinearSystem& system) {
+  if (act.dormant_dofs.empty()) return;
+  const DofMap& dofs = system.dofs;
+  double* values = system.pattern.matrix.valuePtr();
+  if (tangent) {
+    double sum = 0.0;
+    for (Index eq = 0; eq < dofs.n_free; ++eq) sum += std::abs(values[system.pattern.diagonal_slot[std::size_t(eq)]]);
+    const Index n_live = dofs.n_free - Index(act.dormant_dofs.size());
+    const double scale = n_live > 0 && sum > 0.0 ? sum / double(n_live) : 1.0;
+    for (Index dof : act.dormant_dofs) values[system.pattern.diagonal_slot[std::size_t(dofs.equation[std::size_t(dof)])]] = scale;
+  }
+  for (Index dof : act.dormant_dofs) system.residual_full[dof] = 0.0, system.residual[dofs.equation[std::size_t(dof)]] = 0.0;
 }
 
 template <int NE>

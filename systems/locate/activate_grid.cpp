@@ -1,6 +1,8 @@
 #include "systems/locate/activate_grid.hpp"
 
+#include "engine/core/errors.hpp"
 #include "systems/locate/ghost_faces.hpp"
+#include "systems/locate/grid_system.hpp"
 
 namespace loom {
 
@@ -36,28 +38,16 @@ void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocatio
     activity.colour_offsets[std::size_t(k) + 1] = Index(activity.active_by_colour.size());
   }
   ++activity.version;
-  ++activity.rebuilds;
 
-  // 3. Dofs: absent on inactive nodes, prescribed where a boundary prescribes them, free otherwise.
-  const int pn = bc.per_node;
-  std::vector<DofKind> kinds(std::size_t(n_nodes) * std::size_t(pn), DofKind::free);
-  for (Index i = 0; i < n_nodes; ++i)
-    if (!activity.node_active[std::size_t(i)])
-      for (int d = 0; d < pn; ++d) kinds[std::size_t(i) * std::size_t(pn) + std::size_t(d)] = DofKind::absent;
-  for (const auto& p : bc.prescribed)
-    if (kinds[std::size_t(p.dof)] == DofKind::free) kinds[std::size_t(p.dof)] = DofKind::prescribed;
-  system.dofs.build(pn, std::move(kinds));
-
-  // 4. Pattern over the active cells (and the ghost-penalty faces, which couple the nodes of two cells)
-  // and their scatters.
+  // 3. The Newton system: the built one if the new active set fits in it, else one built around it (and on a
+  // restart, first the one the checkpointed run had).
   const bool ghost = ctx.scene && ctx.scene->grid.ghost_penalty > 0.0;
   if (ghost) find_ghost_faces(grid, n_nodes, activity);
-  if (ghost) build_pattern({&grid, &activity.ghost_faces}, system.dofs, system.pattern, {&activity.active_cells, nullptr});
-  else build_pattern({&grid}, system.dofs, system.pattern, {&activity.active_cells});
-  system.scatter.resize(ghost ? 2 : 1);
-  build_scatter(grid, system.dofs, system.pattern, system.scatter[0], &activity.active_cells);
-  if (ghost) build_scatter(activity.ghost_faces, system.dofs, system.pattern, system.scatter[1]);
-  system.resize_vectors();
+  if (activity.system_cells.empty() && !activity.system_base.empty()) build_grid_system(grid, bc, ghost, activity, system);
+  if (fit_grid_system(ghost, activity, system)) return;
+  activity.system_base = activity.active_cells;
+  build_grid_system(grid, bc, ghost, activity, system);
+  LOOM_CHECK(fit_grid_system(ghost, activity, system), RunError, "the grid's Newton system does not hold the active set it was built around");
 }
 
 }  // namespace loom

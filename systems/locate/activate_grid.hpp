@@ -1,8 +1,8 @@
 // Activates the background-grid cells that hold material points and their nodes (seed 003 §3.1; seed 004
-// eq 27), and numbers the Newton system on them: dofs of inactive nodes are absent (masked, nothing is
-// resized), prescribed dofs of active nodes are eliminated, the rest are free. The dof numbering, the
-// sparsity pattern (over the active cells) and the cell scatter are rebuilt only when the active set
-// changes; the new pattern version makes the linear solver redo its symbolic analysis.
+// eq 27), and keeps the Newton system on them (systems/locate/grid_system.hpp): when the active set changes,
+// it is fitted into the system built before, whose dof numbering, pattern and symbolic factorisation then
+// stay; only when it does not fit is the system rebuilt around it (a new pattern version, a new symbolic
+// analysis). Dofs outside the system are absent, prescribed dofs eliminated, the rest free.
 #pragma once
 
 #include "engine/graph/step_context.hpp"
