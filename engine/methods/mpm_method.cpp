@@ -252,7 +252,8 @@ void MpmRun::describe(std::ostream& os) const {
     m_.traction_points.for_each_column(r);
   }
   os << "  linear_system: " << m_.system.dofs.n_dofs() << " dofs (" << m_.system.dofs.per_node << " per grid node), " << m_.system.dofs.n_free
-     << " free at t = 0, " << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
+     << " free at t = 0 (" << m_.activity.dormant_dofs.size() << " of them dormant: the layer of cells around the active ones, which keeps the "
+     << "pattern while the body moves), " << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
      << (m_.linear_solver == LinearSolverKind::umfpack ? "umfpack" : m_.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)")
      << "\n";
   os << "  grid_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, " << m_.traction_points.X.size() << " traction points, loads "

@@ -4,13 +4,16 @@ system (from each run's timings.json): the side-by-side benchmark of perf/compar
 
     perf/compare/step_times.py cantilever [--loom build/loom] [--threads 1,2] [--repeat 3] [--csv out.csv]
     perf/compare/step_times.py fem | pfem | all
+    perf/compare/step_times.py cantilever --loom OLD_LOOM,build/loom     (two builds, runs interleaved)
 
 Problems (each a scene and the --set lists of its sizes):
   cantilever  perf/compare/cantilever_mpm.toml: the 10 m x 1 m linear elastic beam, implicit MPM with grid
               Newmark, quad4 cells, 4 particles per cell; 1 440, 10 240, 40 960, 100 000 particles; 120 steps
   fem         scenes/cooks_membrane_neo_hooke.toml (one static load step, Newton): 1e3, 1e4, 1e5 cells
   pfem        scenes/moderate_block_pfem.toml (remeshed every step): 16 x 16 to 64 x 64 divisions, 20 steps
-Each configuration runs --repeat times; the run with the median wall time is reported. Times are wall
+Each configuration runs --repeat times; the run with the median wall time is reported. With several
+binaries (--loom A,B) their runs alternate, so that a slow period of the machine hits both alike, and each
+row names its binary. Times are wall
 clock of loom's own timers, per step = the run's wall time (set-up included) over its steps; "other" is the
 part of the wall time in none of the listed systems; "non-solver" is the share of the Newton iterations spent
 outside the linear solver (assembly and update).
@@ -71,7 +74,7 @@ def run_once(loom, scene, sets, threads, out):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("problem", choices=list(PROBLEMS) + ["all"])
-    ap.add_argument("--loom", default=os.path.join(ROOT, "build/loom"))
+    ap.add_argument("--loom", default=os.path.join(ROOT, "build/loom"), help="loom binary, or several separated by commas")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--csv", help="also write the rows to this file")
@@ -83,35 +86,39 @@ def main():
     print(header)
     for problem in problems:
         for label, scene, sets in PROBLEMS[problem]():
-            base = None
+            binaries = args.loom.split(",")
+            base = {}
             for threads in (int(x) for x in args.threads.split(",")):
-                runs = []
+                runs = {b: [] for b in binaries}
                 for _ in range(args.repeat):
-                    with tempfile.TemporaryDirectory() as out:
-                        runs.append(run_once(args.loom, scene, sets, threads, out))
-                runs.sort(key=lambda r: r[0]["wall"])
-                t, steps, newton = runs[len(runs) // 2]
-                timers = t["timers"]
-                wall = t["wall"]
-                ms = 1e3 * wall / steps
-                share = {c: 100.0 * timers[c]["total"] / wall if c in timers else None for c in COLUMNS}
-                # A parent's share without its listed children.
-                for parent, child in (("newton/solve/factorize", "newton/solve/factorize/analyze"), ("remesh", "remesh/triangulate")):
-                    if share[parent] is not None and share[child] is not None:
-                        share[parent] -= share[child]
-                listed = sum(v for v in share.values() if v is not None)
-                analyses = timers.get("newton/solve/factorize/analyze", {}).get("calls", 0)
-                # The share of the Newton iterations spent outside the linear solver (assembly, update).
-                non_solver = 100.0 * (1.0 - timers["newton/solve"]["total"] / timers["newton"]["total"]) if "newton" in timers else 0.0
-                base = base or ms
-                print(f"{problem:10s} {label:>18s} {threads:3d} {ms:8.2f} {newton / steps:6.2f} {analyses:4d}/{steps:<4d} " +
-                      " ".join(f"{v:10.1f}" if v is not None else f"{'-':>10s}" for v in share.values()) +
-                      f" {100.0 - listed:6.1f} {non_solver:10.1f}" + (f"   speed-up {base / ms:.2f}" if threads != 1 else ""))
-                sys.stdout.flush()
-                rows.append({"problem": problem, "size": label, "threads": threads, "ms_per_step": round(ms, 3),
-                             "newton_per_step": round(newton / steps, 3), "analyses": analyses, "steps": steps,
-                             "non_solver_share": round(non_solver, 2),
-                             **{c: round(v, 2) if v is not None else "" for c, v in share.items()}})
+                    for b in binaries:
+                        with tempfile.TemporaryDirectory() as out:
+                            runs[b].append(run_once(b, scene, sets, threads, out))
+                for b in binaries:
+                    runs[b].sort(key=lambda r: r[0]["wall"])
+                for b in binaries:
+                    t, steps, newton = runs[b][len(runs[b]) // 2]
+                    timers, wall = t["timers"], t["wall"]
+                    ms = 1e3 * wall / steps
+                    share = {c: 100.0 * timers[c]["total"] / wall if c in timers else None for c in COLUMNS}
+                    # A parent's share without its listed children.
+                    for parent, child in (("newton/solve/factorize", "newton/solve/factorize/analyze"), ("remesh", "remesh/triangulate")):
+                        if share[parent] is not None and share[child] is not None:
+                            share[parent] -= share[child]
+                    listed = sum(v for v in share.values() if v is not None)
+                    analyses = timers.get("newton/solve/factorize/analyze", {}).get("calls", 0)
+                    # The share of the Newton iterations spent outside the linear solver (assembly, update).
+                    non_solver = 100.0 * (1.0 - timers["newton/solve"]["total"] / timers["newton"]["total"]) if "newton" in timers else 0.0
+                    base.setdefault(b, ms)
+                    name = f"  {b}" if len(binaries) > 1 else ""
+                    print(f"{problem:10s} {label:>18s} {threads:3d} {ms:8.2f} {newton / steps:6.2f} {analyses:4d}/{steps:<4d} " +
+                          " ".join(f"{v:10.1f}" if v is not None else f"{'-':>10s}" for v in share.values()) +
+                          f" {100.0 - listed:6.1f} {non_solver:10.1f}" + (f"   speed-up {base[b] / ms:.2f}" if threads != 1 else "") + name)
+                    sys.stdout.flush()
+                    rows.append({"binary": b, "problem": problem, "size": label, "threads": threads, "ms_per_step": round(ms, 3),
+                                 "newton_per_step": round(newton / steps, 3), "analyses": analyses, "steps": steps,
+                                 "non_solver_share": round(non_solver, 2),
+                                 **{c: round(v, 2) if v is not None else "" for c, v in share.items()}})
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0]))
