@@ -112,6 +112,7 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
   out.rejected = 0, out.merged = 0;
   out.area = 0.0;
   std::vector<char> used(std::size_t(n), 0);
+  std::vector<Cdt::Face_handle> kept;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     const Index t[3] = {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};  // CGAL: counter-clockwise
     const Vec2 &a = positions[std::size_t(t[0])], &b = positions[std::size_t(t[1])], &c = positions[std::size_t(t[2])];
@@ -144,35 +145,51 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
     }
     out.merged_face.push_back(merged ? 1 : 0);
     out.triangles.insert(out.triangles.end(), {t[0], t[1], t[2]});
+    kept.push_back(f);
     for (Index k : t) used[std::size_t(k)] = 1;
     out.area += 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());
   }
   out.isolated = Index(std::count(used.begin(), used.end(), 0));
-  out.boundary = boundary_of(out.triangles);
+  // The outline: the sides of kept faces whose neighbour across was not kept, by face and side, which is
+  // boundary_of(out.triangles) without searching for the pairs (CGAL's faces know their neighbours).
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = 0;
+  for (const Cdt::Face_handle& f : kept) f->info() = 1;
+  out.boundary.clear();
+  for (const Cdt::Face_handle& f : kept)
+    for (int side = 0; side < 3; ++side)  // corners (side, side + 1), opposite corner side + 2
+      if (f->neighbor((side + 2) % 3)->info() != 1) out.boundary.push_back({f->vertex(side)->info(), f->vertex((side + 1) % 3)->info()});
 }
 
 void average_neighbour_distance(const std::vector<Vec2>& positions, const std::vector<Index>& triangles,
                                 std::vector<double>& average_distance) {
+  // Each node's neighbours bucketed (a counting sort, linear), then summed in ascending order of the
+  // neighbour: the order in which a sort of all edges by their node pair visited them.
   const std::size_t n = positions.size();
-  std::vector<std::uint64_t> edges;
-  edges.reserve(triangles.size());
+  std::vector<Index> first(n + 1, 0);
   for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
-    for (int s = 0; s < 3; ++s) {
-      const auto a = std::uint64_t(triangles[t + std::size_t(s)]), b = std::uint64_t(triangles[t + std::size_t((s + 1) % 3)]);
-      edges.push_back((std::min(a, b) << 32) | std::max(a, b));
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  std::vector<double> sum(n, 0.0);
-  std::vector<int> count(n, 0);
-  for (std::uint64_t e : edges) {
-    const std::size_t a = e >> 32, b = e & 0xffffffffu;
-    const double d = (positions[a] - positions[b]).norm();
-    sum[a] += d, sum[b] += d, ++count[a], ++count[b];
+    for (int s = 0; s < 3; ++s) ++first[std::size_t(triangles[t + std::size_t(s)]) + 1], ++first[std::size_t(triangles[t + std::size_t((s + 1) % 3)]) + 1];
+  for (std::size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  std::vector<Index> neighbour(static_cast<std::size_t>(first[n]));
+  {
+    std::vector<Index> cursor(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t + 2 < triangles.size(); t += 3)
+      for (int s = 0; s < 3; ++s) {
+        const Index a = triangles[t + std::size_t(s)], b = triangles[t + std::size_t((s + 1) % 3)];
+        neighbour[std::size_t(cursor[std::size_t(a)]++)] = b, neighbour[std::size_t(cursor[std::size_t(b)]++)] = a;
+      }
   }
   average_distance.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i)
-    if (count[i] > 0) average_distance[i] = sum[i] / count[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto begin = neighbour.begin() + first[i], end = neighbour.begin() + first[i + 1];
+    std::sort(begin, end);
+    const auto last = std::unique(begin, end);
+    double sum = 0.0;
+    for (auto j = begin; j != last; ++j) {
+      const std::size_t a = std::min(i, std::size_t(*j)), b = std::max(i, std::size_t(*j));
+      sum += (positions[a] - positions[b]).norm();
+    }
+    if (last != begin) average_distance[i] = sum / int(last - begin);
+  }
 }
 
 std::vector<Edge> boundary_of(const std::vector<Index>& triangles) {

@@ -211,6 +211,37 @@ TEST(RemeshPoints, LocalCharacteristicLengthFollowsThePointDensity) {
   EXPECT_EQ(local.boundary.size(), 16u + 8u);
 }
 
+// A jittered cloud with holes opened by a small alpha: the outline remesh_points reads off CGAL's face
+// neighbours is boundary_of(triangles), edge for edge and in order; eq 17's means are those of the unique
+// edges summed in ascending neighbour order (the sort the counting version replaced), bit for bit.
+TEST(RemeshPoints, OutlineAndMeanDistancesEqualTheirDefinitions) {
+  std::vector<Vec2> x;
+  add_grid(x, Vec2(0, 0), 30, 20, 0.1);
+  std::uint64_t state = 7;
+  auto jitter = [&] { return double((state = state * 6364136223846793005ull + 1442695040888963407ull) >> 11) / double(1ull << 53) - 0.5; };
+  for (auto& p : x) p += 0.06 * Vec2(jitter(), jitter());
+  RemeshResult r;
+  remesh_points(x, {}, RemeshSettings{0.75, 0.1, false}, {}, r);
+  ASSERT_GT(r.rejected, 20);  // holes inside: several boundary loops
+  EXPECT_EQ(r.boundary, boundary_of(r.triangles));
+
+  std::vector<double> d;
+  average_neighbour_distance(x, r.triangles, d);
+  std::set<std::pair<Index, Index>> edges;
+  for (std::size_t t = 0; t < r.triangles.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = r.triangles[t + std::size_t(k)], b = r.triangles[t + std::size_t((k + 1) % 3)];
+      edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  std::vector<double> sum(x.size(), 0.0);
+  std::vector<int> count(x.size(), 0);
+  for (const auto& [a, b] : edges) {  // ascending pairs: each point sees its neighbours in ascending order
+    const double l = (x[std::size_t(a)] - x[std::size_t(b)]).norm();
+    sum[std::size_t(a)] += l, sum[std::size_t(b)] += l, ++count[std::size_t(a)], ++count[std::size_t(b)];
+  }
+  for (std::size_t i = 0; i < x.size(); ++i) EXPECT_EQ(d[i], count[i] ? sum[i] / count[i] : 0.0) << "point " << i;
+}
+
 TEST(RemeshPoints, RejectsCoincidentPoints) {
   const std::vector<Vec2> x = {{0, 0}, {1, 0}, {0, 1}, {1, 0}};
   RemeshResult r;
