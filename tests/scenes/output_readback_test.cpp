@@ -384,7 +384,7 @@ TEST(OutputReadBack, SmoothedElementsWriteTheNodalPressureAndJ) {
   vtkDataArray* cell_pressure = f.cell("pressure");
   ASSERT_NE(cell_pressure, nullptr);
   double q_mean = 0.0;
-  for (vtkIdType c = 0; c < cell_pressure->GetNumberOfTuples(); ++c) q_mean += cell_pressure->GetTuple1(c) / double(cell_pressure->GetNumberOfTuples());
+  for (vtkIdType k = 0; k < cell_pressure->GetNumberOfTuples(); ++k) q_mean += cell_pressure->GetTuple1(k) / double(cell_pressure->GetNumberOfTuples());
   EXPECT_LT(p_mean, 0.0);  // a column under its weight is in compression
   EXPECT_NEAR(q_mean, -p_mean, 0.2 * std::abs(p_mean));
   EXPECT_GT(J_min, 0.0);

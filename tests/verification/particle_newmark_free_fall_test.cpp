@@ -80,7 +80,9 @@ FreeFall check_free_fall(const std::string& initial, double c1, double c2, bool 
   for (Index p = 0; p < particles.X.size(); ++p) {
     worst_u = std::max(worst_u, (particles.u[p] - u_exact).norm() / u_exact.norm());
     worst_v = std::max(worst_v, (particles.v[p] - v_exact).norm() / v_exact.norm());
-    if (check_F) EXPECT_LE((particles.F[p] - Mat3::Identity()).norm(), 1e-10);
+    if (check_F) {
+      EXPECT_LE((particles.F[p] - Mat3::Identity()).norm(), 1e-10);
+    }
     out.u.push_back(particles.u[p]);
   }
   EXPECT_LE(worst_u, tolerance);

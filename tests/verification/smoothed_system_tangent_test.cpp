@@ -99,7 +99,9 @@ void check(const std::string& element) {
   }
   for (int a = 0; a < 2; ++a)
     for (int b = 0; b < 2; ++b)
-      if (block_max[a][b] > 0.0) EXPECT_LT(block_error[a][b], 1e-6 * block_max[a][b]) << "block " << a << b;
+      if (block_max[a][b] > 0.0) {
+        EXPECT_LT(block_error[a][b], 1e-6 * block_max[a][b]) << "block " << a << b;
+      }
   const double scale = K.cwiseAbs().maxCoeff();
   std::printf("[system tangent] %-6s: %lld free dofs, %lld plastic domains, max |K - K_fd| %.1e (max |K| %.1e)\n", element.c_str(),
               (long long)m.system.dofs.n_free, (long long)plastic, worst, scale);

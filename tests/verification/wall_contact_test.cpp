@@ -62,7 +62,9 @@ TEST(WallContact, BlockRestingOnTheGroundCarriesItsWeightAndSinksByPOverK) {
     const Nodes<2>& nodes = run->nodes();
     for (Index i = 0; i < nodes.size(); ++i) {
       EXPECT_GE(nodes.position_n(i).y(), -v[3] * (1 + 1e-12)) << "node " << i;
-      if (nodes.X[i].y() == 0.0) EXPECT_NEAR(nodes.u_n[i].y(), -p / k_n, 1e-8 * p / k_n) << "node " << i;
+      if (nodes.X[i].y() == 0.0) {
+        EXPECT_NEAR(nodes.u_n[i].y(), -p / k_n, 1e-8 * p / k_n) << "node " << i;
+      }
     }
     std::printf("[wall] resting block, k_N %.3g: wall force %.10g (weight %.10g), penetration %.6e (p / k_N %.6e, %.2e of h)\n", k_n, v[1],
                 weight, v[3], p / k_n, v[3] / 0.125);
