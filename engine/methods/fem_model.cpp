@@ -8,6 +8,7 @@
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/build_domains.hpp"
 #include "engine/methods/build_walls.hpp"
+#include "engine/methods/initial_velocity.hpp"
 #include "engine/methods/memory_estimate.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/update/lumped_mass.hpp"
@@ -72,6 +73,10 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   set_reference_areas(nodes, cells);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
   walls = build_walls(scene, nodes, cells, node_body);
+  if (dynamic)
+    for_each_initial_velocity(
+        scene, nodes.size(), [&](Index i) { return node_body[std::size_t(i)]; }, [&](Index i) { return Vec2(nodes.X[i]); },
+        [&](Index i, const Vec2& v) { nodes.v[i] = v, nodes.v_n[i] = v; });
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
   const int per_node = mixed ? 3 : 2;  // u_x, u_y (, phi)

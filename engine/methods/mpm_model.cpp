@@ -9,6 +9,7 @@
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_particles.hpp"
+#include "engine/methods/initial_velocity.hpp"
 #include "engine/methods/memory_estimate.hpp"
 #include "engine/mesh/quad9_grid.hpp"
 #include "systems/locate/activate_grid.hpp"
@@ -183,6 +184,19 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   }
   materials = body_materials(scene);
   build_material_points(scene, particles);
+  if (dynamic) {
+    for_each_initial_velocity(
+        scene, particles.X.size(), [&](Index p) { return particles.body[p]; }, [&](Index p) { return Vec2(particles.X[p]); },
+        [&](Index p, const Vec2& v) { particles.v[p] = v; });
+    if (coupled) {  // the FEM bodies' nodes, at their reference position
+      std::vector<Index> node_body(std::size_t(grid_nodes.size()), kNoIndex);
+      for (Index c = coupled_mesh.grid_cells; c < grid.size(); ++c)
+        for (int a = 0; a < grid.stride; ++a) node_body[std::size_t(grid.node(c, a))] = grid.body[c];
+      for_each_initial_velocity(
+          scene, grid_nodes.size(), [&](Index i) { return node_body[std::size_t(i)]; }, [&](Index i) { return Vec2(grid_nodes.X[i]); },
+          [&](Index i, const Vec2& v) { grid_nodes.v[i] = v; });
+    }
+  }
   bc.per_node = mixed ? 3 : 2;
   build_traction_points(scene, traction_points, bc);
   std::vector<Vec2> tracers;

@@ -257,6 +257,9 @@ class Loader {
     if (t.has("inertia") && !(s.scene.method == Method::mpm_fem && b.element == Formulation::quad9))
       t.error("inertia", "inertia chooses the density of an FEM body's inertia in method mpm_fem (element = \"quad9\")");
     b.body_force = read_vector(t.table("body_force"), diag_);
+    b.initial_velocity = read_vector(t.table("initial_velocity"), diag_);
+    if (t.has("initial_velocity") && s.time.integrator == Integrator::static_)
+      t.error("initial_velocity", "an initial velocity needs a dynamic time.integrator (euler_backward, newmark or bossak); the scene is static");
     warn_if_locking(s, t, b);
     s.bodies.push_back(b);
   }

@@ -185,6 +185,11 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].body_force", K::table, "Body force per unit mass on this body (added to the global [body_force])."));
   s.push_back(key("body[].body_force.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("body[].body_force.y", K::expression, "y component." + expr).by_default("0"));
+  s.push_back(key("body[].initial_velocity", K::table,
+                  "The body's velocity at t = 0, a field in the reference position (dynamic integrators only: the nodes of "
+                  "fem, pfem and es_pfem bodies, the particles of an mpm body, the nodes of an mpm_fem FEM body)."));
+  s.push_back(key("body[].initial_velocity.x", K::expression, "x component, in x and y (t = 0), e.g. \"-0.5 * y\" for a rotation.").by_default("0"));
+  s.push_back(key("body[].initial_velocity.y", K::expression, "y component, in x and y (t = 0).").by_default("0"));
   // [grid]
   s.push_back(key("grid", K::table,
                   "Method mpm: the background grid ([Moreno et al.] §3), fixed triangles or squares that need not conform to the body and "
