@@ -18,8 +18,22 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     }
     for (std::size_t b = 0; b < boundaries.size() && b < s.boundaries.size(); ++b)
       if (s.boundaries[b].pressure) boundaries[b].error("pressure", "a prescribed pressure needs method = \"mpm\" with element = \"p1p1_up\"");
-    for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k)
-      if (s.probes[k].kind == ProbeKind::energy) probes[k].error("kind", "energy probes are implemented by method = \"mpm\"");
+    // Energy probes (systems/output/mesh_energy.hpp): displacement formulations, hyperelastic materials, the
+    // lumped mass for the kinetic energy.
+    for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k) {
+      if (s.probes[k].kind != ProbeKind::energy) continue;
+      for (const BodySpec& b : s.bodies) {
+        const MaterialModel model = s.materials[std::size_t(b.material)].model;
+        if (b.element != Formulation::p1 && b.element != Formulation::tri6 && b.element != Formulation::quad9)
+          probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +
+                                      " take the displacement elements p1, tri6 and quad9 (body \"" + b.name + "\" is not one)");
+        else if (model != MaterialModel::neo_hooke && model != MaterialModel::linear_elastic)
+          probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +
+                                      " take the materials neo_hooke and linear_elastic (body \"" + b.name + "\")");
+      }
+      if (s.time.integrator != Integrator::static_ && s.time.mass == MassKind::consistent)
+        probes[k].error("kind", "the kinetic energy of method " + std::string(method_name(s.scene.method)) + " is of the lumped mass: use time.mass = \"lumped\"");
+    }
     return;
   }
   if (!grid.present()) root.table("scene").error("method", std::string("method = \"") + method_name(s.scene.method) + "\" needs a background grid: add a [grid] table");

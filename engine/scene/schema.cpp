@@ -289,7 +289,9 @@ std::vector<KeySpec> build_schema() {
                   "speed (fem, pfem, es_pfem): the largest speed |v| of a body's nodes (a flow at rest). mass (fem, pfem, es_pfem): the "
                   "body's mass, density times its reference area (the area it would have unstressed: volume is smaller by what the "
                   "pressure compresses it). volume and mass with `inlet`: only what lies downstream of the inlet's section (the poured "
-                  "material).")
+                  "material). energy (mpm, mpm_fem; fem and pfem with the elements p1, tri6, quad9, the materials neo_hooke and "
+                  "linear_elastic and the lumped mass): the part `energy` of the bodies' energy at the step (kinetic, elastic, their "
+                  "total, the potential of the external loads, all three: mechanical).")
                   .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "stress", "wall_force",
                            "penetration", "speed", "mass"}).require());
   s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));

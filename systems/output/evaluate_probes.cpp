@@ -9,6 +9,7 @@
 
 #include "engine/mesh/quad9_shape.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
+#include "systems/output/mesh_energy.hpp"
 
 namespace loom {
 
@@ -240,9 +241,15 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         values[k] = worst;
         break;
       }
-      case ProbeKind::energy:  // method mpm only (the loader rejects it for fem)
-        values[k] = kNaN;
+      case ProbeKind::energy: {  // displacement formulations and hyperelastic materials (the loader checks)
+        const MeshEnergy e = mesh_energy(materials, nodes, cells, quad, bc);
+        values[k] = p.energy == EnergyPart::kinetic     ? e.kinetic
+                    : p.energy == EnergyPart::elastic   ? e.elastic
+                    : p.energy == EnergyPart::potential ? e.potential
+                    : p.energy == EnergyPart::total     ? e.kinetic + e.elastic
+                                                        : e.kinetic + e.elastic + e.potential;
         break;
+      }
       case ProbeKind::stress: {
         Mat3 mean = Mat3::Zero();
         for (const StressSample& s : plan.samples[k]) {

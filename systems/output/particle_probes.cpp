@@ -4,24 +4,10 @@
 #include <limits>
 
 #include "engine/mesh/quad9_shape.hpp"
+#include "systems/output/elastic_energy.hpp"
 
 namespace loom {
 namespace {
-
-double elastic_energy(const BodyMaterial& material, const Mat3& F, bool mixed, double pressure) {
-  if (const auto* split = std::get_if<NeoHookeSplit>(&material.model)) {
-    if (!mixed) return split->energy(F);
-    NeoHookeSplit dev{split->mu, 0.0};
-    return dev.energy(F) + 0.5 * pressure * pressure * split->inv_kappa;
-  }
-  if (const auto* nh = std::get_if<NeoHooke>(&material.model)) {
-    const double lnJ = std::log(F.determinant());
-    return 0.5 * nh->lambda * lnJ * lnJ + 0.5 * nh->mu * (F.squaredNorm() - 3.0) - nh->mu * lnJ;
-  }
-  const auto& le = std::get<LinearElastic>(material.model);
-  const Mat3 eps = 0.5 * (F + F.transpose()) - Mat3::Identity();
-  return 0.5 * le.lambda * eps.trace() * eps.trace() + le.mu * eps.squaredNorm();
-}
 
 // Method mpm_fem: the FEM cells' energies at their Gauss points on the undeformed cells (X^ = X - u_n, after the
 // step's commit u_n is the FEM nodes' displacement): kinetic 1/2 rho_i V_0 |v_g|^2 (the consistent mass's quadratic

@@ -1,0 +1,25 @@
+// Energies of the mesh-based methods (fem, pfem) for the energy probe, at the last converged step: kinetic
+// 1/2 sum_A m_A |v_A|^2 with the lumped mass; elastic sum_q dV_0 psi(F_n) over the quadrature points (dV_0 =
+// dV_n / det F_n), for the displacement formulations (p1, tri6, quad9) and the hyperelastic materials (the
+// loader refuses the others); potential -f_ext . u_n of the nodal external forces (body forces and
+// tractions, a potential while they are dead loads).
+#pragma once
+
+#include <vector>
+
+#include "engine/store/boundary_conditions.hpp"
+#include "engine/store/cells.hpp"
+#include "engine/store/nodes.hpp"
+#include "engine/store/quad_points.hpp"
+#include "systems/assemble/materials/material.hpp"
+
+namespace loom {
+
+struct MeshEnergy {
+  double kinetic = 0.0, elastic = 0.0, potential = 0.0;
+};
+
+MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes, const std::vector<Cells>& cells,
+                       const std::vector<QuadPoints<2>>& quad, const BoundaryConditions<2>& bc);
+
+}  // namespace loom
