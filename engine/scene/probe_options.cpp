@@ -16,7 +16,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
                                   {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
                                   {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
                                   {"stress", ProbeKind::stress}, {"wall_force", ProbeKind::wall_force}, {"penetration", ProbeKind::penetration},
-                                  {"speed", ProbeKind::speed}, {"mass", ProbeKind::mass}});
+                                  {"speed", ProbeKind::speed}, {"mass", ProbeKind::mass}, {"angular_momentum", ProbeKind::angular_momentum}});
   p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total},
                                                              {"potential", EnergyPart::potential}, {"mechanical", EnergyPart::mechanical}});
   p.max = t.string("bound") == "max";
@@ -95,6 +95,14 @@ void read_probe(SceneSpec& s, const TableReader& t) {
     case ProbeKind::newton:
     case ProbeKind::energy:
       unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
+      break;
+    case ProbeKind::angular_momentum:
+      unused("boundary"), unused("component"), unused("body"), unused("group");
+      if (s.time.integrator == Integrator::static_) t.error("kind", "kind = \"angular_momentum\" reads velocities: it needs a dynamic time.integrator");
+      if (s.scene.method == Method::mpm_fem) t.error("kind", "kind = \"angular_momentum\" is implemented for methods fem, pfem, es_pfem and mpm");
+      if (!is_mpm(s.scene.method) && s.time.mass == MassKind::consistent)
+        t.error("kind", "kind = \"angular_momentum\" sums the lumped nodal masses: use time.mass = \"lumped\"");
+      p.at = t.has("at") ? t.vec2("at") : Vec2::Zero();  // the point the moments are taken about
       break;
     case ProbeKind::remesh:
       needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");

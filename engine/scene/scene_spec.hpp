@@ -32,7 +32,8 @@ enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
 enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file };
-enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass };
+enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
+                       angular_momentum };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
 enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed };
 

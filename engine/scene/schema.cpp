@@ -291,15 +291,16 @@ std::vector<KeySpec> build_schema() {
                   "pressure compresses it). volume and mass with `inlet`: only what lies downstream of the inlet's section (the poured "
                   "material). energy (mpm, mpm_fem; fem and pfem with the elements p1, tri6, quad9, the materials neo_hooke and "
                   "linear_elastic and the lumped mass): the part `energy` of the bodies' energy at the step (kinetic, elastic, their "
-                  "total, the potential of the external loads, all three: mechanical).")
-                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "stress", "wall_force",
+                  "total, the potential of the external loads, all three: mechanical). angular_momentum (dynamic fem, pfem, es_pfem with "
+                  "the lumped mass; mpm): sum m (r x v), r from `at` (default the origin), of the nodes or particles.")
+                  .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "angular_momentum", "stress", "wall_force",
                            "penetration", "speed", "mass"}).require());
   s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));
   s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
   s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y), of a wall_force probe (x, y, normal), or of a stress probe.")
                   .one_of({"x", "y", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
-  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe."));
+  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe; of an angular_momentum probe, the point the moments are taken about (default the origin)."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
   s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));

@@ -241,6 +241,15 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         values[k] = worst;
         break;
       }
+      case ProbeKind::angular_momentum: {  // about `at`, of the lumped nodal masses at the converged step
+        double L = 0.0;
+        for (Index i = 0; i < nodes.size(); ++i) {
+          const Vec2 r = nodes.position_n(i) - p.at;
+          L += nodes.lumped_mass[i] * (r.x() * nodes.v_n[i].y() - r.y() * nodes.v_n[i].x());
+        }
+        values[k] = L;
+        break;
+      }
       case ProbeKind::energy: {  // displacement formulations and hyperelastic materials (the loader checks)
         const MeshEnergy e = mesh_energy(materials, nodes, cells, quad, bc);
         values[k] = p.energy == EnergyPart::kinetic     ? e.kinetic

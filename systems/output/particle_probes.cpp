@@ -116,6 +116,15 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
                                                         : kinetic + elastic + potential;
         break;
       }
+      case ProbeKind::angular_momentum: {  // about `at`, of the particles (method mpm; the loader refuses mpm_fem)
+        double L = 0.0;
+        for (Index i = 0; i < particles.X.size(); ++i) {
+          const Vec2 r = particles.position(i) - p.at;
+          L += particles.mass[i] * (r.x() * particles.v[i].y() - r.y() * particles.v[i].x());
+        }
+        values[k] = L;
+        break;
+      }
       case ProbeKind::pressure_jump: values[k] = grid.nodes.p.used() ? pressure_jump(grid) : kNaN; break;
       case ProbeKind::volume:  // fem and pfem only (rejected by the scene checks for mpm)
       case ProbeKind::speed:
