@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/mesh/triangle_rules.hpp"
+#include "engine/scene/loader_support.hpp"
+
 namespace loom {
 
 void read_newmark_parameters(const TableReader& time, TimeSpec& t) {
@@ -112,6 +115,24 @@ void read_mpm_options(SceneSpec& s, const TableReader& root) {
   for (std::size_t b = 0; b < boundaries.size() && b < s.boundaries.size(); ++b)
     if (s.boundaries[b].has_traction)
       boundaries[b].error("traction", "scheme = \"particle_newmark\" takes body forces only (tractions on particle sets are not implemented)");
+}
+
+void read_mpm_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
+  b.particles_per_cell = int(t.integer("particles_per_cell"));
+  if (t.has("particles_per_cell") && !has_triangle_rule(b.particles_per_cell)) {
+    std::string sizes;
+    for (int n : triangle_rule_sizes()) sizes += (sizes.empty() ? "" : ", ") + std::to_string(n);
+    t.error("particles_per_cell", "no triangle rule with " + std::to_string(b.particles_per_cell) + " points (available: " + sizes + ")");
+  }
+  b.stabilisation = pick<Stabilisation>(t.string("stabilisation"), {{"none", Stabilisation::none}, {"ppp", Stabilisation::ppp},
+                                                                    {"asgs", Stabilisation::asgs}, {"osgs", Stabilisation::osgs}});
+  b.tau_c1 = t.real("tau_c1");
+  b.tau_c2 = t.real("tau_c2");
+  for (const char* k : {"stabilisation", "tau_c1", "tau_c2"})
+    if (t.has(k) && b.element != Formulation::p1p1_up) t.error(k, std::string(k) + " is only used by element = \"p1p1_up\"");
+  if (b.element == Formulation::p1p1_up && b.material != kNoIndex &&
+      s.materials[std::size_t(b.material)].model != MaterialModel::neo_hooke_split)
+    t.error("element", "p1p1_up takes the pressure of a deviatoric/volumetric split: use it with model = \"neo_hooke_split\"");
 }
 
 }  // namespace loom

@@ -11,6 +11,9 @@ namespace loom {
 // time.beta and time.gamma (newmark only; unconditional stability 2 beta >= gamma >= 1/2).
 void read_newmark_parameters(const TableReader& time, TimeSpec& t);
 
+// Options of method mpm on a body (seed 003): particles per cell of its mesh, and the stabilisation of p1p1_up.
+void read_mpm_body(const SceneSpec& s, const TableReader& t, BodySpec& b);
+
 // body[].particles: the disk or beam generator of the paper's appendix.
 void read_particle_generator(const TableReader& body, BodySpec& b);
 

@@ -10,7 +10,6 @@
 #include <toml++/toml.h>
 
 #include "engine/core/errors.hpp"
-#include "engine/mesh/triangle_rules.hpp"
 #include "engine/scene/expression.hpp"
 #include "engine/scene/mesh_options.hpp"
 #include "engine/scene/method_checks.hpp"
@@ -281,24 +280,6 @@ class Loader {
     s.warnings.push_back(os.str());
   }
 
-  // Options of method mpm on a body (seed 003): particles, and the stabilisation of p1p1_up.
-  void read_mpm_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
-    b.particles_per_cell = int(t.integer("particles_per_cell"));
-    if (t.has("particles_per_cell") && !has_triangle_rule(b.particles_per_cell)) {
-      std::string sizes;
-      for (int n : triangle_rule_sizes()) sizes += (sizes.empty() ? "" : ", ") + std::to_string(n);
-      t.error("particles_per_cell", "no triangle rule with " + std::to_string(b.particles_per_cell) + " points (available: " + sizes + ")");
-    }
-    b.stabilisation = pick<Stabilisation>(t.string("stabilisation"), {{"none", Stabilisation::none}, {"ppp", Stabilisation::ppp},
-                                                                      {"asgs", Stabilisation::asgs}, {"osgs", Stabilisation::osgs}});
-    b.tau_c1 = t.real("tau_c1");
-    b.tau_c2 = t.real("tau_c2");
-    for (const char* k : {"stabilisation", "tau_c1", "tau_c2"})
-      if (t.has(k) && b.element != Formulation::p1p1_up) t.error(k, std::string(k) + " is only used by element = \"p1p1_up\"");
-    if (b.element == Formulation::p1p1_up && b.material != kNoIndex &&
-        s.materials[std::size_t(b.material)].model != MaterialModel::neo_hooke_split)
-      t.error("element", "p1p1_up takes the pressure of a deviatoric/volumetric split: use it with model = \"neo_hooke_split\"");
-  }
 
   void read_boundary(SceneSpec& s, const TableReader& t) {
     BoundarySpec b;
