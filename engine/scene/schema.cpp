@@ -276,9 +276,11 @@ std::vector<KeySpec> build_schema() {
                   "extent: largest (bound = max) or smallest coordinate of a body's nodes along `component`; "
                   "pressure_jump: mean |p_1 - p_2| of the cell pressures across the interior edges of a body (pressure oscillation); "
                   "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh; "
-                  "energy (method mpm, mpm_fem): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles (and of the FEM bodies' "
+                  "energy (mpm, mpm_fem): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles (and of the FEM bodies' "
                   "Gauss points, with their consistent mass), total = kinetic + elastic, potential -sum m b . u of the body force "
-                  "at the step's time (u from the start), mechanical = kinetic + elastic + potential. "
+                  "at the step's time (u from the start), mechanical = kinetic + elastic + potential; fem and pfem (elements p1, tri6, "
+                  "quad9, materials neo_hooke and linear_elastic, lumped mass): the same of the nodes' lumped masses and the "
+                  "quadrature points, potential -f_ext . u of the nodal external loads. "
                   "stress (fem, pfem): a `component` of the Cauchy stress at `at` (xx, yy, xy, zz, von_mises, or pressure = -tr/3), "
                   "extrapolated linearly from the quadrature points of the cell that holds the point and averaged over the cells "
                   "that share it (a node). "
@@ -289,9 +291,7 @@ std::vector<KeySpec> build_schema() {
                   "speed (fem, pfem, es_pfem): the largest speed |v| of a body's nodes (a flow at rest). mass (fem, pfem, es_pfem): the "
                   "body's mass, density times its reference area (the area it would have unstressed: volume is smaller by what the "
                   "pressure compresses it). volume and mass with `inlet`: only what lies downstream of the inlet's section (the poured "
-                  "material). energy (mpm, mpm_fem; fem and pfem with the elements p1, tri6, quad9, the materials neo_hooke and "
-                  "linear_elastic and the lumped mass): the part `energy` of the bodies' energy at the step (kinetic, elastic, their "
-                  "total, the potential of the external loads, all three: mechanical). angular_momentum (dynamic fem, pfem, es_pfem with "
+                  "material). angular_momentum (dynamic fem, pfem, es_pfem with "
                   "the lumped mass; mpm): sum m (r x v), r from `at` (default the origin), of the nodes or particles.")
                   .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "angular_momentum", "stress", "wall_force",
                            "penetration", "speed", "mass"}).require());
