@@ -4,6 +4,14 @@
 
 namespace loom {
 
+std::pair<Index, Index> append_face_nodes(const Cells& grid, Index c, int a, Index n, std::vector<Index>& conn) {
+  const auto [i, j] = grid.side_corners(c, a);
+  for (int k = 0; k < grid.stride; ++k) conn.push_back(grid.node(c, k));
+  for (int k = 0; k < grid.stride; ++k)  // the corners of n off the face, in n's order (ghost_face.hpp)
+    if (const Index m = grid.node(n, k); m != i && m != j) conn.push_back(m);
+  return {i, j};
+}
+
 void find_ghost_faces(const Cells& grid, Index n_nodes, GridActivity& act) {
   const int nc = grid.stride, sides = grid.sides(), nf = 2 * nc - 2;
   // 1. Cut cells: active cells with a corner of an inactive cell.
@@ -26,12 +34,7 @@ void find_ghost_faces(const Cells& grid, Index n_nodes, GridActivity& act) {
     for (int a = 0; a < sides; ++a) {
       const Index n = grid.neighbour[std::size_t(sides) * std::size_t(c) + std::size_t(a)];
       if (n == kNoIndex || n < c || !act.cell_active[std::size_t(n)] || !(c_cut || cut(n))) continue;
-      const auto [i, j] = grid.side_corners(c, a);
-      for (int k = 0; k < nc; ++k) conn.push_back(grid.node(c, k));
-      for (int k = 0; k < nc; ++k) {  // the corners of n off the face, in n's order (ghost_face.hpp)
-        const Index m = grid.node(n, k);
-        if (m != i && m != j) conn.push_back(m);
-      }
+      const auto [i, j] = append_face_nodes(grid, c, a, n, conn);
       act.ghost_cells.insert(act.ghost_cells.end(), {c, n});
       act.ghost_ends.insert(act.ghost_ends.end(), {i, j});
     }

@@ -6,11 +6,18 @@
 // ghost_ends, in ascending order of the left cell.
 #pragma once
 
+#include <utility>
+#include <vector>
+
 #include "engine/store/cells.hpp"
 #include "engine/store/grid_activity.hpp"
 
 namespace loom {
 
 void find_ghost_faces(const Cells& grid, Index n_nodes, GridActivity& activity);
+
+// Appends the face between cell c and its neighbour n across side a in the kernel's local order (c's
+// corners, then n's corners off the face, in n's order); returns the face's corners.
+std::pair<Index, Index> append_face_nodes(const Cells& grid, Index c, int a, Index n, std::vector<Index>& conn);
 
 }  // namespace loom

@@ -1,5 +1,7 @@
 #include "systems/locate/grid_system.hpp"
 
+#include "systems/locate/ghost_faces.hpp"
+
 
 namespace loom {
 
@@ -47,10 +49,7 @@ void build_grid_system(const Cells& grid, const BoundaryConditions<2>& bc, bool 
       for (int a = 0; a < sides; ++a) {
         const Index n = grid.neighbour[std::size_t(sides) * std::size_t(c) + std::size_t(a)];
         if (n == kNoIndex || n < c || activity.scatter_entry[std::size_t(n)] == kNoIndex || !(band[std::size_t(c)] || band[std::size_t(n)])) continue;
-        const auto [i, j] = grid.side_corners(c, a);
-        for (int k = 0; k < nc; ++k) conn.push_back(grid.node(c, k));
-        for (int k = 0; k < nc; ++k)
-          if (const Index m = grid.node(n, k); m != i && m != j) conn.push_back(m);
+        append_face_nodes(grid, c, a, n, conn);
       }
     band_faces.body.assign(Index(conn.size()) / band_faces.stride, 0);
   }
