@@ -1,31 +1,34 @@
 // Updated-Lagrangian displacement kernel at one quadrature point (seed 000 §2, eqs 2-3, 6, 14), for an
-// element with NEN nodes in 2D plane strain:
+// element with NEN nodes in D dimensions (D = 2: plane strain, F33 = 1; D = 3: the whole 3x3 F):
 //   dF = I + sum_A (u^A - u_n^A) (x) dN^A/dX_n,   F = dF F_n                     (eq 2-3)
 //   G^A = F_n^T dN^A/dX_n = dN^A/dX (reference gradient, eq 10)
 //   f_int^A_i += P_ij G^A_j dV_0                                                 (eq 6)
 //   K^AB_ik  += G^A_j (dP_ij/dF_kl) G^B_l dV_0                                    (eq 14-15)
-// with dV_0 = dV_n / J_n (eq 9). Local dofs are node-major: 2A + i.
+// with dV_0 = dV_n / J_n (eq 9) and i, j, k, l < D. Local dofs are node-major: D A + i.
+// D defaults to 2 and is never deduced (the arrays may be Maps): 3D callers write <NEN, 3>.
 #pragma once
 
 #include <Eigen/Core>
+#include <type_traits>
 
 #include "engine/core/types.hpp"
 #include "systems/assemble/materials/tensor9.hpp"
 
 namespace loom {
 
-template <int NEN>
-using NodalVectors = Eigen::Matrix<double, NEN, 2>;  // one 2D vector per node (rows)
-template <int NEN>
-using ElementVector = Eigen::Matrix<double, 2 * NEN, 1>;
-template <int NEN>
-using ElementMatrix = Eigen::Matrix<double, 2 * NEN, 2 * NEN>;
+template <int NEN, int D = 2>
+using NodalVectors = Eigen::Matrix<double, NEN, D>;  // one D-vector per node (rows)
+template <int NEN, int D = 2>
+using ElementVector = Eigen::Matrix<double, D * NEN, 1>;
+template <int NEN, int D = 2>
+using ElementMatrix = Eigen::Matrix<double, D * NEN, D * NEN>;
 
-// Deformation gradient at the point: F = (I + du^T dN) F_n with plane-strain embedding.
-template <int NEN>
-Mat3 deformation_gradient(const NodalVectors<NEN>& du, const NodalVectors<NEN>& dN, const Mat3& F_n) {
+// Deformation gradient at the point: F = (I + du^T dN) F_n (in 2D with the plane-strain embedding).
+template <int NEN, int D = 2>
+Mat3 deformation_gradient(const std::type_identity_t<NodalVectors<NEN, D>>& du, const std::type_identity_t<NodalVectors<NEN, D>>& dN,
+                          const Mat3& F_n) {
   Mat3 dF = Mat3::Identity();
-  dF.template topLeftCorner<2, 2>() += du.transpose() * dN;
+  dF.template topLeftCorner<D, D>() += du.transpose() * dN;
   return dF * F_n;
 }
 
@@ -33,41 +36,43 @@ Mat3 deformation_gradient(const NodalVectors<NEN>& du, const NodalVectors<NEN>& 
 // (seed 004's receding contact replaces the displacements of a cell's wall nodes by a linear map of the
 // others, u* = T u, so that dF depends on u through dN_trial = T^T dN), the virtual work from dN; the
 // tangent G^A A G*^B is then unsymmetric.
-template <int NEN, class MaterialT>
-bool add_displacement_point(const MaterialT& material, const NodalVectors<NEN>& du, const NodalVectors<NEN>& dN,
-                            const NodalVectors<NEN>& dN_trial, double dV_n, const Mat3& F_n, Mat3& F, ElementVector<NEN>& r,
-                            ElementMatrix<NEN>* K) {
-  F = deformation_gradient<NEN>(du, dN_trial, F_n);
+template <int NEN, int D = 2, class MaterialT>
+bool add_displacement_point(const MaterialT& material, const std::type_identity_t<NodalVectors<NEN, D>>& du,
+                            const std::type_identity_t<NodalVectors<NEN, D>>& dN,
+                            const std::type_identity_t<NodalVectors<NEN, D>>& dN_trial, double dV_n, const Mat3& F_n, Mat3& F,
+                            ElementVector<NEN, D>& r, ElementMatrix<NEN, D>* K) {
+  F = deformation_gradient<NEN, D>(du, dN_trial, F_n);
   const double dV0 = dV_n / F_n.determinant();
-  const NodalVectors<NEN> G = dN * F_n.template topLeftCorner<2, 2>();
+  const NodalVectors<NEN, D> G = dN * F_n.template topLeftCorner<D, D>();
   Mat3 P;
   if (!K) {
     if (!material.stress(F, P)) return false;
   } else {
     Mat9 A;
     if (!material.stress_tangent(F, P, A)) return false;
-    const NodalVectors<NEN> G_trial = dN_trial * F_n.template topLeftCorner<2, 2>();
-    for (int i = 0; i < 2; ++i)
-      for (int k = 0; k < 2; ++k) {
-        Eigen::Matrix2d C;  // C_jl = A_ijkl for fixed i, k
-        C << A(ij(i, 0), ij(k, 0)), A(ij(i, 0), ij(k, 1)), A(ij(i, 1), ij(k, 0)), A(ij(i, 1), ij(k, 1));
-        const NodalVectors<NEN> GC = G * C;
+    const NodalVectors<NEN, D> G_trial = dN_trial * F_n.template topLeftCorner<D, D>();
+    for (int i = 0; i < D; ++i)
+      for (int k = 0; k < D; ++k) {
+        Eigen::Matrix<double, D, D> C;  // C_jl = A_ijkl for fixed i, k
+        for (int j = 0; j < D; ++j)
+          for (int l = 0; l < D; ++l) C(j, l) = A(ij(i, j), ij(k, l));
+        const NodalVectors<NEN, D> GC = G * C;
         const Eigen::Matrix<double, NEN, NEN> block = dV0 * GC * G_trial.transpose();
         for (int a = 0; a < NEN; ++a)
-          for (int b = 0; b < NEN; ++b) (*K)(2 * a + i, 2 * b + k) += block(a, b);
+          for (int b = 0; b < NEN; ++b) (*K)(D * a + i, D * b + k) += block(a, b);
       }
   }
-  const NodalVectors<NEN> f = dV0 * G * P.template topLeftCorner<2, 2>().transpose();  // f(A, i) = P_ij G^A_j
-  for (int a = 0; a < NEN; ++a) r.template segment<2>(2 * a) += f.row(a).transpose();
+  const NodalVectors<NEN, D> f = dV0 * G * P.template topLeftCorner<D, D>().transpose();  // f(A, i) = P_ij G^A_j
+  for (int a = 0; a < NEN; ++a) r.template segment<D>(D * a) += f.row(a).transpose();
   return true;
 }
 
 // Adds the point's internal force (and tangent if K != nullptr) to r and K; returns false if the
 // material state does not exist (J <= 0). F receives the deformation gradient. Test and trial gradients equal.
-template <int NEN, class MaterialT>
-bool add_displacement_point(const MaterialT& material, const NodalVectors<NEN>& du, const NodalVectors<NEN>& dN,
-                            double dV_n, const Mat3& F_n, Mat3& F, ElementVector<NEN>& r, ElementMatrix<NEN>* K) {
-  return add_displacement_point<NEN>(material, du, dN, dN, dV_n, F_n, F, r, K);
+template <int NEN, int D = 2, class MaterialT>
+bool add_displacement_point(const MaterialT& material, const std::type_identity_t<NodalVectors<NEN, D>>& du,
+                            const std::type_identity_t<NodalVectors<NEN, D>>& dN, double dV_n, const Mat3& F_n, Mat3& F, ElementVector<NEN, D>& r, ElementMatrix<NEN, D>* K) {
+  return add_displacement_point<NEN, D>(material, du, dN, dN, dV_n, F_n, F, r, K);
 }
 
 }  // namespace loom

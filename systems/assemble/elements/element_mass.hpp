@@ -6,11 +6,15 @@
 //  quad9: consistent M^AB = sum_q N^A N^B dV_0q at the 3 x 3 Gauss points (exact on parallelograms);
 //        lumped by the row sum m^A = int N^A dV_0, positive for quad9 (on a rectangle the tensor product of
 //        Simpson's 1/6, 2/3, 1/6: corners 1/36, mid-sides 1/9, centre 4/9 of the area).
+//  tet4: consistent M^AB = V_0 (1 + d_AB) / 20, lumped m^A = V_0 / 4.
+//  tet10: as tri6 (degree-5 fourteen-point rule, exact on straight cells; HRZ lumping: the row sum gives
+//        corners -1/20 of the volume).
 #pragma once
 
 #include <Eigen/Core>
 
 #include "engine/mesh/quad9_shape.hpp"
+#include "systems/assemble/elements/tet10.hpp"
 #include "systems/assemble/elements/tri6.hpp"
 
 namespace loom {
@@ -35,6 +39,26 @@ inline Eigen::Matrix<double, 6, 6> tri6_consistent_mass(double area0) {
 inline Eigen::Matrix<double, 6, 1> tri6_lumped_mass(double area0) {
   const Eigen::Matrix<double, 6, 6> M = tri6_consistent_mass(area0);
   return M.diagonal() * (area0 / M.trace());
+}
+
+inline Eigen::Matrix4d tet4_consistent_mass(double volume0) {
+  Eigen::Matrix4d M = Eigen::Matrix4d::Constant(volume0 / 20.0);
+  M.diagonal().setConstant(volume0 / 10.0);
+  return M;
+}
+
+inline Eigen::Matrix<double, 10, 10> tet10_consistent_mass(double volume0) {
+  Eigen::Matrix<double, 10, 10> M = Eigen::Matrix<double, 10, 10>::Zero();
+  for (const auto& p : kTetrahedronRule14) {
+    const Tet10Values N = tet10_values(p.l);
+    M += p.w * volume0 * N * N.transpose();
+  }
+  return M;
+}
+
+inline Tet10Values tet10_lumped_mass(double volume0) {
+  const Eigen::Matrix<double, 10, 10> M = tet10_consistent_mass(volume0);
+  return M.diagonal() * (volume0 / M.trace());
 }
 
 // dV0[q]: the reference volume of Gauss point q (quad9_gauss order).
