@@ -12,7 +12,19 @@
 
 namespace loom {
 
-enum class LinearSolverKind { automatic, cholmod, umfpack };
+enum class LinearSolverKind { automatic, cholmod, umfpack, cg };
+
+// The back-ends that take only symmetric positive definite matrices.
+inline bool needs_spd(LinearSolverKind k) { return k == LinearSolverKind::cholmod || k == LinearSolverKind::cg; }
+inline const char* linear_solver_name(LinearSolverKind k) {
+  switch (k) {
+    case LinearSolverKind::automatic: return "auto (cholmod, umfpack if indefinite)";
+    case LinearSolverKind::cholmod: return "cholmod";
+    case LinearSolverKind::umfpack: return "umfpack";
+    case LinearSolverKind::cg: return "cg (conjugate gradients, diagonal preconditioner)";
+  }
+  return "?";
+}
 
 class LinearSolver {
  public:
@@ -23,17 +35,33 @@ class LinearSolver {
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   // The back-end's estimate of 1 / cond(A) from its pivots, after a successful factorize.
   virtual double rcond() = 0;
+  // Non-zeros of the factor and flops of its numeric factorisation: CHOLMOD's prediction after analyze;
+  // UMFPACK's estimate after analyze, its count after factorize. NaN where the back-end does not say.
+  struct FactorSize {
+    double entries = NAN, flops = NAN;
+  };
+  virtual FactorSize factor_size() { return {}; }
+  // False for an iterative back-end: it has no pivots, and rcond() means nothing.
+  virtual bool estimates_condition() const { return true; }
 };
 
 std::unique_ptr<LinearSolver> make_cholmod_solver();  // supernodal LL^T, SPD only
-std::unique_ptr<LinearSolver> make_umfpack_solver();  // general sparse LU
+// General sparse LU. Above `wide_above` Units (8 bytes) of estimated workspace it factorises with 64-bit indices
+// (umfpack_dl: the int version fails beyond 2^31 Units); 0 always does (for tests).
+inline constexpr double kUmfpackWideAbove = 5e8;
+std::unique_ptr<LinearSolver> make_umfpack_solver(double wide_above = kUmfpackWideAbove);
+// Conjugate gradients with the diagonal preconditioner, SPD only; each solve stops at
+// |A x - b| <= tolerance |b| (solve() returns false if it does not get there in n iterations).
+std::unique_ptr<LinearSolver> make_cg_solver(double tolerance);
+inline constexpr double kDefaultCgTolerance = 1e-10;
 
 // The solver a run uses: picks the back-end, redoes the symbolic analysis only when the pattern
 // changes, and with `automatic` switches from CHOLMOD to UMFPACK for good the first time a matrix is
 // not positive definite.
 class LinearSolve {
  public:
-  explicit LinearSolve(LinearSolverKind kind);
+  // cg_tolerance: the relative residual each solve of kind cg reaches (unused by the direct back-ends).
+  explicit LinearSolve(LinearSolverKind kind, double cg_tolerance = kDefaultCgTolerance);
   ~LinearSolve();
   // The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) of pattern.matrix, if its
   // pattern is not the one analysed last; true if it ran.
@@ -49,7 +77,8 @@ class LinearSolve {
   int analyses() const { return analyses_; }
   // Why the last factorize returned false.
   const std::string& failure() const { return failure_; }
-  // The smallest pivot-based estimate of 1 / cond since reset_condition() (0 after a singular matrix).
+  // The smallest pivot-based estimate of 1 / cond since reset_condition() (0 after a singular matrix; stays
+  // infinite with cg, which has no pivots).
   // Below kNearlySingular the matrix is singular up to round-off: a solution exists only by accident of
   // the rounding, and any component in its near-null space is arbitrary.
   static constexpr double kNearlySingular = 1e-13;
@@ -59,6 +88,7 @@ class LinearSolve {
 
  private:
   LinearSolverKind kind_;
+  double cg_tolerance_;
   std::unique_ptr<LinearSolver> solver_;
   std::uint64_t analysed_version_ = 0;
   double min_rcond_ = INFINITY;

@@ -25,7 +25,7 @@
 namespace loom {
 
 FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
-    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance) {
   ctx_.scene = &scene_;
   resolve_probe_groups();
   check_model();
@@ -261,7 +261,7 @@ void FemRun::describe(std::ostream& os) const {
   }
   os << "  linear_system: " << m_.system.dofs.n_dofs() << " dofs, " << m_.system.dofs.n_free << " free, "
      << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
-     << (m_.linear_solver == LinearSolverKind::umfpack ? "umfpack" : m_.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)")
+     << linear_solver_name(m_.linear_solver)
      << "\n";
   os << "  boundary_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, " << m_.bc.traction_edges.size()
      << " traction edges, loads " << (m_.bc.has_loads ? (m_.bc.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";

@@ -29,8 +29,9 @@ bool mixed_formulation(Formulation f) { return has_dilatation(f) || has_pressure
 LinearSolverKind linear_solver_for(const SceneSpec& scene) {
   if (!has_body(scene, mixed_formulation)) return scene.solver.linear;
   const char* element = has_body(scene, has_dilatation) ? "p1p1_uphi" : has_body(scene, has_pressure) ? "es_up or fem_up" : "";
-  LOOM_CHECK(scene.solver.linear != LinearSolverKind::cholmod, InputError,
-             scene.file << ": error: solver.linear: cholmod needs a symmetric tangent, and element " << element << " has none; use umfpack or auto");
+  LOOM_CHECK(!needs_spd(scene.solver.linear), InputError,
+             scene.solver.linear_where << ": error: solver.linear: " << (scene.solver.linear == LinearSolverKind::cg ? "cg" : "cholmod")
+                        << " needs a symmetric tangent, and element " << element << " has none; use umfpack or auto");
   return LinearSolverKind::umfpack;
 }
 

@@ -30,7 +30,7 @@
 
 namespace loom {
 MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
-    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance) {
   ctx_.scene = &scene_;
   if (options_.profile) timers_.enable_profile();
   // A static model must hold the active grid's rigid motions; a point probe must start in the body.
@@ -254,7 +254,7 @@ void MpmRun::describe(std::ostream& os) const {
   os << "  linear_system: " << m_.system.dofs.n_dofs() << " dofs (" << m_.system.dofs.per_node << " per grid node), " << m_.system.dofs.n_free
      << " free at t = 0 (" << m_.activity.dormant_dofs.size() << " of them dormant: the layer of cells around the active ones, which keeps the "
      << "pattern while the body moves), " << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
-     << (m_.linear_solver == LinearSolverKind::umfpack ? "umfpack" : m_.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "auto (cholmod, umfpack if indefinite)")
+     << linear_solver_name(m_.linear_solver)
      << "\n";
   os << "  grid_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, " << m_.traction_points.X.size() << " traction points, loads "
      << (m_.bc.has_loads ? "yes" : "none") << "\n";

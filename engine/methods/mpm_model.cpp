@@ -211,11 +211,12 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   bc.external = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
   const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
   linear_solver = mixed || unsymmetric ? LinearSolverKind::umfpack : scene.solver.linear;
-  LOOM_CHECK(!(unsymmetric && scene.solver.linear == LinearSolverKind::cholmod), InputError,
-             scene.file << ": error: solver.linear: cholmod needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
+  const char* chosen = scene.solver.linear == LinearSolverKind::cg ? "cg" : "cholmod";
+  LOOM_CHECK(!(unsymmetric && needs_spd(scene.solver.linear)), InputError,
+             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
                         << "makes it unsymmetric; use umfpack or auto");
-  LOOM_CHECK(!(mixed && scene.solver.linear == LinearSolverKind::cholmod), InputError,
-             scene.file << ": error: solver.linear: cholmod needs a symmetric positive definite tangent, and the mixed u-p system "
+  LOOM_CHECK(!(mixed && needs_spd(scene.solver.linear)), InputError,
+             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric positive definite tangent, and the mixed u-p system "
                         << "(p1p1_up) is indefinite and, stabilised, unsymmetric; use umfpack or auto");
 
   // 3. Where the points are, and the active grid.

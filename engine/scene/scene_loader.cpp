@@ -157,7 +157,10 @@ class Loader {
     s.solver.max_cutbacks = int(t.integer("max_cutbacks"));
     s.solver.linear = pick<LinearSolverKind>(t.string("linear"), {{"auto", LinearSolverKind::automatic},
                                                                   {"cholmod", LinearSolverKind::cholmod},
-                                                                  {"umfpack", LinearSolverKind::umfpack}});
+                                                                  {"umfpack", LinearSolverKind::umfpack},
+                                                                  {"cg", LinearSolverKind::cg}});
+    s.solver.linear_where = t.has("linear") ? t.where("linear") : t.where();
+    s.solver.linear_tolerance = t.real("linear_tolerance");
     s.solver.tangent = pick<TangentUpdate>(t.string("tangent"), {{"every_iteration", TangentUpdate::every_iteration},
                                                                  {"once_per_step", TangentUpdate::once_per_step}});
   }

@@ -80,6 +80,8 @@ struct SolverSpec {
   bool line_search = false;
   int max_cutbacks = 4;
   LinearSolverKind linear = LinearSolverKind::automatic;
+  SourceRef linear_where;  // of solver.linear (or of [solver], or the file)
+  double linear_tolerance = kDefaultCgTolerance;  // cg: relative residual of each linear solve
   TangentUpdate tangent = TangentUpdate::every_iteration;
 };
 

@@ -1,6 +1,9 @@
 // Linear solves (engine/linalg/linear_solver): CHOLMOD for SPD matrices, UMFPACK for any nonsingular one,
 // automatic = CHOLMOD that falls back to UMFPACK for good when a matrix is not positive definite; the
-// symbolic analysis is redone only when the pattern version changes.
+// symbolic analysis is redone only when the pattern version changes; cg (conjugate gradients, diagonal
+// preconditioner) reaches its relative-residual tolerance, has no pivots to estimate a condition from, and refuses a
+// matrix whose diagonal is not positive; UMFPACK's 64-bit-index path (taken by large 3D systems) solves as the
+// 32-bit one does.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -144,6 +147,56 @@ TEST(LinearSolve, ThePivotRatioTellsANearlySingularMatrixFromARegularOne) {
     ASSERT_TRUE(s.factorize(spd(2)));
     EXPECT_GT(s.min_rcond(), 0.1) << s.backend();  // eigenvalues in (1, 5)
   }
+}
+
+// A 1D Laplacian + 0.01 I of 200 unknowns (condition ~400): CG needs many iterations, and its error follows its
+// tolerance.
+TEST(LinearSolve, ConjugateGradientsReachTheirTolerance) {
+  const SparsePattern p = tridiagonal(200, [](int) { return 2.01; }, 1);
+  Eigen::VectorXd x_known(200);
+  for (int i = 0; i < 200; ++i) x_known[i] = std::sin(0.1 * i) + 0.01 * i;
+  const Eigen::VectorXd b = p.matrix * x_known;
+  for (double tolerance : {1e-6, 1e-12}) {
+    LinearSolve s(LinearSolverKind::cg, tolerance);
+    s.reset_condition();
+    ASSERT_TRUE(s.factorize(p));
+    Eigen::VectorXd x;
+    ASSERT_TRUE(s.solve(b, x));
+    EXPECT_LE((p.matrix * x - b).norm(), tolerance * b.norm());
+    EXPECT_GT((p.matrix * x - b).norm(), 1e-4 * tolerance * b.norm());  // it stops near the tolerance, not at round-off
+    EXPECT_EQ(s.backend(), "cg");
+    EXPECT_EQ(s.min_rcond(), INFINITY);  // no estimate, so never "nearly singular"
+  }
+}
+
+TEST(LinearSolve, ConjugateGradientsRefuseANonPositiveDiagonal) {
+  LinearSolve s(LinearSolverKind::cg);
+  EXPECT_FALSE(s.factorize(indefinite()));
+  EXPECT_NE(s.failure().find("not positive definite"), std::string::npos) << s.failure();
+}
+
+// The path with 64-bit indices, forced (wide_above = 0), against the default int path, on an unsymmetric matrix.
+TEST(LinearSolve, UmfpackWithWideIndicesSolvesAsTheIntVersion) {
+  SparsePattern p = tridiagonal(50, [](int i) { return 3.0 + 0.1 * i; }, 1);
+  for (int j = 0; j < p.matrix.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(p.matrix, j); it; ++it)
+      if (it.row() > it.col()) it.valueRef() = -0.5;  // unsymmetric
+  Eigen::VectorXd b(50);
+  for (int i = 0; i < 50; ++i) b[i] = std::cos(0.3 * i);
+  Eigen::VectorXd x_int, x_wide;
+  auto narrow = make_umfpack_solver(), wide = make_umfpack_solver(0.0);
+  narrow->analyze(p.matrix), wide->analyze(p.matrix);
+  ASSERT_TRUE(narrow->factorize(p.matrix) && wide->factorize(p.matrix));
+  ASSERT_TRUE(narrow->solve(b, x_int) && wide->solve(b, x_wide));
+  EXPECT_LE((p.matrix * x_wide - b).norm(), 1e-14 * b.norm());
+  EXPECT_LE((x_wide - x_int).norm(), 1e-15 * x_int.norm());
+  EXPECT_EQ(wide->factor_size().entries, narrow->factor_size().entries);
+  EXPECT_DOUBLE_EQ(wide->rcond(), narrow->rcond());
+  // New values on the same pattern: the wide copy follows them.
+  for (int j = 0; j < p.matrix.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(p.matrix, j); it; ++it) it.valueRef() *= 2.0;
+  ASSERT_TRUE(wide->factorize(p.matrix) && wide->solve(b, x_wide));
+  EXPECT_LE((x_wide - 0.5 * x_int).norm(), 1e-15 * x_int.norm());
 }
 
 }  // namespace
