@@ -1,7 +1,7 @@
 // A mesh file written by gmsh (.msh, format 4.1 or 2.2, ASCII or binary), read through gmsh's own API, as it
 // is: every node, every element block of any dimension with gmsh's element type, and every physical group
 // with its name, dimension and nodes. Nothing here is two-dimensional: turning it into the triangles of a
-// body is mesh_from_gmsh's job, and tetrahedra will come through the same path.
+// body is mesh_from_gmsh's job, and tet_mesh_from_gmsh's for the tetrahedra of a 3D body.
 //
 // libgmsh is loaded when a file is read (dlopen of its C API, gmshc.h), not linked: linked, it loads 91
 // shared libraries (OpenCASCADE, FLTK, ...) into every loom process, 70 ms and 48 MB before main, for

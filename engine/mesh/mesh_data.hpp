@@ -18,7 +18,7 @@ namespace loom {
 // when both corners of its edge do; so a region keeps its meaning when PFEM re-creates the mid-nodes.
 struct MeshRegion {
   std::string name;
-  int dim = 0;                 // 0 points, 1 curves, 2 surfaces
+  int dim = 0;                 // 0 points, 1 curves, 2 surfaces, 3 volumes
   std::vector<Index> corners;  // indices into MeshData::X, ascending
   std::vector<std::array<Index, 2>> edges;  // curves: the end corners of each line element, lower index first
 };

@@ -8,12 +8,15 @@
 #include <Eigen/Geometry>  // cross
 
 #include "engine/core/types.hpp"
+#include "engine/mesh/mesh_data.hpp"  // MeshRegion
 
 namespace loom {
 
 struct TetMeshData {
   std::vector<Vec3> X;       // corner node coordinates
   std::vector<Index> tets;   // 4 node indices per tetrahedron, positively oriented (VTK_TETRA)
+  std::vector<MeshRegion> regions;      // a mesh file's physical groups, by corner nodes (no edges)
+  std::vector<std::size_t> source_tag;  // per tetrahedron: its element tag in the file (for messages)
   Index n_tets() const { return Index(tets.size() / 4); }
 };
 
@@ -23,6 +26,7 @@ struct Tet10MeshData {
   std::vector<Vec3> X;
   std::vector<Index> cells;  // 10 per cell
   Index n_corners = 0;
+  std::vector<MeshRegion> regions;  // by corner nodes, as TetMeshData's
   Index n_cells() const { return Index(cells.size() / 10); }
 };
 

@@ -1,5 +1,5 @@
 // 3D patch test of the tetrahedral kernels (displacement_point<NEN, 3>, uphi_internal<3>) on a distorted
-// Kuhn box: with the boundary nodes displaced by a homogeneous u = (F - I) X that has out-of-plane shear, the
+// Kuhn box and on gmsh's unstructured mesh of the unit cube (tests/meshes/cube_tet4.msh, cube_tet10.msh): with the boundary nodes displaced by a homogeneous u = (F - I) X that has out-of-plane shear, the
 // interior nodes of tet4, tet10 and the mixed tet4 u-phi settle at the same affine map to round-off (and the
 // mixed tet's phi at det F), for a linear and a Neo-Hooke material. The kernels are assembled here by hand
 // (a Newton loop over a sparse LU) because the engine's systems are still 2D; the 3D systems will repeat this
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/mesh/tet_generators.hpp"
+#include "engine/mesh/tet_mesh_from_gmsh.hpp"
 #include "systems/assemble/elements/p1p1_uphi_cell.hpp"
 #include "systems/assemble/elements/tet10.hpp"
 #include "systems/assemble/elements/tet4.hpp"
@@ -29,15 +30,24 @@ struct Patch {
   std::vector<char> on_boundary;
 };
 
-Patch make_patch(Element e) {
+// The distorted box, or (from_file) the unit cube meshed by gmsh, its 10-node cells read from their own file.
+Patch make_patch(Element e, bool from_file) {
   BoxSpec spec;
-  spec.size = Vec3(1.0, 0.8, 1.2);
+  spec.size = from_file ? Vec3(1.0, 1.0, 1.0) : Vec3(1.0, 0.8, 1.2);
   spec.nx = spec.ny = spec.nz = 3;
-  TetMeshData mesh = generate_box(spec);
-  EXPECT_GT(distort_interior_nodes(mesh, 0.3, 11), 0.2);
+  TetMeshData mesh;
+  Tet10MeshData q;
+  if (from_file) {
+    const std::string file = std::string(LOOM_SOURCE_DIR) + "/tests/meshes/" + (e == Element::tet10 ? "cube_tet10.msh" : "cube_tet4.msh");
+    const TetMeshFile read = tet_mesh_of(read_gmsh_file(file, "test", "mesh"), "", "test", "mesh");
+    mesh = read.corners, q = read.quadratic;
+  } else {
+    mesh = generate_box(spec);
+    EXPECT_GT(distort_interior_nodes(mesh, 0.3, 11), 0.2);
+    if (e == Element::tet10) q = tet10_from_tet4(mesh);
+  }
   Patch p;
   if (e == Element::tet10) {
-    const Tet10MeshData q = tet10_from_tet4(mesh);
     p.X = q.X, p.cells = q.cells, p.nen = 10;
   } else {
     p.X = mesh.X, p.cells = mesh.tets;
@@ -118,23 +128,28 @@ bool assemble(const M& material, Element e, const Patch& p, const Eigen::VectorX
 }
 
 // Prescribes u = (F - I) X on the boundary, solves for the rest by Newton from a random perturbation of the
-// exact state (3 % of the cell size: a start at u = 0 would invert the cells next to the boundary) and returns the largest nodal
+// exact state (3 % of the smallest cell: a start at u = 0 would invert the cells next to the boundary) and returns the largest nodal
 // deviation from the affine map (and from phi = det F), relative to |F - I| times the box size.
 template <class M>
-double patch_error(const M& material, Element e, const Mat3& F) {
-  const Patch p = make_patch(e);
+double patch_error(const M& material, Element e, const Mat3& F, bool from_file = false) {
+  const Patch p = make_patch(e, from_file);
   const int S = p.per_node;
   const Index n_dofs = Index(p.X.size()) * S;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n_dofs), exact(n_dofs);
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> noise(-1.0, 1.0);
+  double h = INFINITY;  // the smallest cell size, (6 V)^(1/3) over the corner tetrahedra
+  for (std::size_t c = 0; c < p.cells.size(); c += std::size_t(p.nen)) {
+    const Index* v = p.cells.data() + c;
+    h = std::min(h, std::cbrt(6.0 * tet_volume(p.X[std::size_t(v[0])], p.X[std::size_t(v[1])], p.X[std::size_t(v[2])], p.X[std::size_t(v[3])])));
+  }
+  std::uniform_real_distribution<double> noise(-0.03 * h, 0.03 * h);
   std::vector<Index> free;
   for (std::size_t i = 0; i < p.X.size(); ++i) {
     exact.segment<3>(S * Index(i)) = (F - Mat3::Identity()) * p.X[i];
     if (S == 4) exact[S * Index(i) + 3] = F.determinant(), x[S * Index(i) + 3] = 1.0, free.push_back(S * Index(i) + 3);
     for (int k = 0; k < 3; ++k) {
       if (p.on_boundary[i]) x[S * Index(i) + k] = exact[S * Index(i) + k];
-      else free.push_back(S * Index(i) + k), x[S * Index(i) + k] = exact[S * Index(i) + k] + 0.01 * noise(rng);
+      else free.push_back(S * Index(i) + k), x[S * Index(i) + k] = exact[S * Index(i) + k] + noise(rng);
     }
   }
   std::sort(free.begin(), free.end());
@@ -178,6 +193,12 @@ TEST(TetPatch, Tet4ReproducesAHomogeneousDeformation) {
 TEST(TetPatch, Tet10ReproducesAHomogeneousDeformation) {
   EXPECT_LE(patch_error(LinearElastic{2.0, 0.6}, Element::tet10, shear_with_stretch()), 1e-13);
   EXPECT_LE(patch_error(NeoHooke{2.0, 0.6}, Element::tet10, shear_with_stretch()), 1e-13);
+}
+
+TEST(TetPatch, UnstructuredGmshMeshesReproduceAHomogeneousDeformation) {
+  EXPECT_LE(patch_error(NeoHooke{2.0, 0.6}, Element::tet4, shear_with_stretch(), true), 1e-13);
+  EXPECT_LE(patch_error(NeoHooke{2.0, 0.6}, Element::tet10, shear_with_stretch(), true), 1e-13);
+  EXPECT_LE(patch_error(NeoHooke{1000.0, 1.0}, Element::uphi, shear_with_stretch(), true), 1e-13);
 }
 
 TEST(TetPatch, MixedTetReproducesAHomogeneousDeformationNearIncompressibility) {
