@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <mutex>
 #include <sstream>
@@ -209,6 +210,19 @@ GmshFile read_gmsh_file(const std::string& path, const std::string& where, const
     file.group_elements.push_back(std::move(elements));
   }
   return file;
+}
+
+const std::vector<std::size_t>* group_elements_of(const GmshFile& file, const std::string& name, int dim) {
+  for (std::size_t k = 0; k < file.groups.size(); ++k)
+    if (file.groups[k].name == name && file.groups[k].dim == dim) return &file.group_elements[k];
+  return nullptr;
+}
+
+std::string group_list(const GmshFile& file) {
+  const char* kinds[] = {"point", "curve", "surface", "volume"};
+  std::string s;
+  for (const auto& g : file.groups) s += (s.empty() ? "" : ", ") + ("\"" + g.name + "\" (" + kinds[std::clamp(g.dim, 0, 3)] + ")");
+  return s.empty() ? "none" : s;
 }
 
 }  // namespace loom

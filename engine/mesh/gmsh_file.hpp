@@ -46,4 +46,9 @@ struct GmshFile {
 // libgmsh is not installed.
 GmshFile read_gmsh_file(const std::string& path, const std::string& where, const std::string& key);
 
+// The element tags of the physical group `name` of dimension `dim`; nullptr if the file has no such group.
+const std::vector<std::size_t>* group_elements_of(const GmshFile& file, const std::string& name, int dim);
+// The physical groups for messages: "\"bottom\" (curve), \"plate\" (surface)", or "none".
+std::string group_list(const GmshFile& file);
+
 }  // namespace loom

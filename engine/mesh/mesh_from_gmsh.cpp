@@ -14,13 +14,6 @@ namespace {
 
 constexpr int kTriangle3 = 2, kTriangle6 = 9;
 
-std::string group_list(const GmshFile& file) {
-  const char* kinds[] = {"point", "curve", "surface", "volume"};
-  std::string s;
-  for (const auto& g : file.groups) s += (s.empty() ? "" : ", ") + ("\"" + g.name + "\" (" + kinds[std::clamp(g.dim, 0, 3)] + ")");
-  return s.empty() ? "none" : s;
-}
-
 // det of the isoparametric map of a 6-node triangle at barycentric (l0, l1, l2), corners and mid-nodes x[6].
 double tri6_jacobian(const Vec2 x[6], double l1, double l2) {
   const double l0 = 1 - l1 - l2;
@@ -40,11 +33,9 @@ MeshData triangle_mesh_of(const GmshFile& file, const std::string& surface, cons
   // Which 2D elements make the body.
   std::unordered_set<std::size_t> selected;
   if (!surface.empty()) {
-    std::size_t k = 0;
-    while (k < file.groups.size() && !(file.groups[k].name == surface && file.groups[k].dim == 2)) ++k;
-    if (k == file.groups.size())
-      fail("no physical surface named \"" + surface + "\" (its physical groups: " + group_list(file) + ")");
-    selected.insert(file.group_elements[k].begin(), file.group_elements[k].end());
+    const auto* group = group_elements_of(file, surface, 2);
+    if (!group) fail("no physical surface named \"" + surface + "\" (its physical groups: " + group_list(file) + ")");
+    selected.insert(group->begin(), group->end());
   }
   const GmshElementBlock* tri = nullptr;
   for (const auto& b : file.blocks) {

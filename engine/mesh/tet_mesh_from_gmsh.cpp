@@ -33,14 +33,9 @@ TetMeshFile tet_mesh_of(const GmshFile& file, const std::string& volume, const s
   auto fail = [&](const std::string& why) { throw InputError(where + ": error: " + key + ": " + file.path + ": " + why); };
   std::unordered_set<std::size_t> selected;
   if (!volume.empty()) {
-    std::size_t k = 0;
-    while (k < file.groups.size() && !(file.groups[k].name == volume && file.groups[k].dim == 3)) ++k;
-    if (k == file.groups.size()) {
-      std::string names;
-      for (const auto& g : file.groups) names += (names.empty() ? "\"" : ", \"") + g.name + "\"";
-      fail("no physical volume named \"" + volume + "\" (its physical groups: " + (names.empty() ? "none" : names) + ")");
-    }
-    selected.insert(file.group_elements[k].begin(), file.group_elements[k].end());
+    const auto* group = group_elements_of(file, volume, 3);
+    if (!group) fail("no physical volume named \"" + volume + "\" (its physical groups: " + group_list(file) + ")");
+    selected.insert(group->begin(), group->end());
   }
   const GmshElementBlock* tets = nullptr;
   for (const auto& b : file.blocks) {

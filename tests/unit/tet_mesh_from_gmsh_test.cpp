@@ -89,7 +89,7 @@ TEST(TetMeshFromGmsh, FilesLoomCannotUseAreInputErrorsNamingTheFile) {
     }
   };
   expect_error("square_tri3.msh", "", "it holds no tetrahedra (mesh the volumes: gmsh -3)");
-  expect_error("cube_tet4.msh", "disk", "no physical volume named \"disk\" (its physical groups: \"bottom\", \"cube\")");
+  expect_error("cube_tet4.msh", "disk", "no physical volume named \"disk\" (its physical groups: \"bottom\" (surface), \"cube\" (volume))");
 }
 
 }  // namespace loom
