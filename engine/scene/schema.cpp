@@ -69,27 +69,7 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("time.adaptive_dt.expression", K::string,
                   "The step size, a muparser formula in the probe's name and t (e.g. \"bottom > -0.16 ? 0.005 : 0.001\").").require());
   s.push_back(key("time.end", K::real, "With time.adaptive_dt: the time at which the run ends.").above(0));
-  // [solver]
-  s.push_back(key("solver", K::table, "Newton-Raphson and linear solver settings."));
-  s.push_back(key("solver.max_iterations", K::integer, "Newton iterations allowed per step before a cut-back.").by_default("25").at_least(1));
-  s.push_back(key("solver.residual_relative", K::real, "Converged when |r| <= residual_relative * |r_0| (r_0: first residual of the step).").by_default("1e-8").at_least(0));
-  s.push_back(key("solver.residual_absolute", K::real, "Converged when |r| <= residual_absolute (force units).").by_default("1e-10").at_least(0));
-  s.push_back(key("solver.increment_relative", K::real, "Converged when |du| <= increment_relative * |u - u_n| (stagnation at round-off).").by_default("1e-12").at_least(0));
-  s.push_back(key("solver.line_search", K::boolean, "Backtracking line search on the residual norm.").by_default("false"));
-  s.push_back(key("solver.max_cutbacks", K::integer, "Times a step may be halved after Newton fails before the run gives up.").by_default("4").at_least(0).at_most(30));
-  s.push_back(key("solver.linear", K::choice,
-                  "Linear solver: cholmod (SPD), umfpack (general LU), auto (CHOLMOD, UMFPACK if not positive definite), cg (conjugate "
-                  "gradients with the diagonal preconditioner, SPD: for systems too large to factorise, from about 3e5 dofs in 3D; "
-                  "slow near incompressibility; docs/solvers_3d.md).")
-                  .one_of({"auto", "cholmod", "umfpack", "cg"}).by_default("auto"));
-  s.push_back(key("solver.linear_tolerance", K::real,
-                  "cg only: each linear solve stops at |K du + r| <= linear_tolerance |r|. Newton then converges as with a direct "
-                  "solver while linear_tolerance is well below solver.residual_relative.")
-                  .by_default("1e-10").above(0).below(1));
-  s.push_back(key("solver.tangent", K::choice,
-                  "every_iteration: full Newton; once_per_step: the tangent of the step's first iteration is factorised once and reused "
-                  "(modified Newton, [Reinold 2021] §3.6; methods fem and pfem).")
-                  .one_of({"every_iteration", "once_per_step"}).by_default("every_iteration"));
+  add_solver_keys(s);  // [solver]: engine/scene/schema_solver.cpp
   // [[material]]
   s.push_back(key("material", K::table_array, "Materials; give either (E, nu) or (K, G).").require());
   s.push_back(key("material[].name", K::string, "Name bodies refer to.").require());

@@ -21,5 +21,7 @@ using K = ValueKind;
 
 // [[wall]], [[inlet]], [remesh], [map]: the keys of mesh-based free-surface runs (schema_free_surface.cpp).
 void add_free_surface_keys(std::vector<KeySpec>& s);
+// [solver]: Newton's tolerances and cut-backs, the linear solver (schema_solver.cpp).
+void add_solver_keys(std::vector<KeySpec>& s);
 
 }  // namespace loom
