@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/core/types.hpp"
+#include "engine/store/cells.hpp"
 
 namespace loom {
 
@@ -43,5 +44,21 @@ inline constexpr std::uint8_t kVtkTriangle = 5;
 inline constexpr std::uint8_t kVtkQuad = 9;
 inline constexpr std::uint8_t kVtkQuadraticTriangle = 22;
 inline constexpr std::uint8_t kVtkBiquadraticQuad = 28;
+inline constexpr std::uint8_t kVtkTetra = 10;
+inline constexpr std::uint8_t kVtkQuadraticTetra = 24;  // corners, then edges 01 12 20 03 13 23 (loom's tet10 order)
+
+// The VTK cell of a loom cell type (0 for the stencils of integration domains, which are never output).
+inline std::uint8_t vtk_cell_type(CellType t) {
+  switch (t) {
+    case CellType::tri3: return kVtkTriangle;
+    case CellType::tri6: return kVtkQuadraticTriangle;
+    case CellType::quad4: return kVtkQuad;
+    case CellType::quad9: return kVtkBiquadraticQuad;
+    case CellType::tet4: return kVtkTetra;
+    case CellType::tet10: return kVtkQuadraticTetra;
+    case CellType::stencil3: case CellType::stencil4: return 0;
+  }
+  return 0;
+}
 
 }  // namespace loom

@@ -15,7 +15,8 @@ namespace loom {
 // quad4: MPM background grids only. stencil3/stencil4: the node stencils of integration domains that no
 // single cell owns (edge-based smoothing domains, engine/store/edges.hpp); they are never output as cells.
 // quad9: biquadratic quadrilaterals (engine/mesh/quad9_shape.hpp), corners first, then mid-sides and centre.
-enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9 };
+// tet4, tet10: linear and quadratic tetrahedra in VTK's node order (systems/assemble/elements/tet4.hpp, tet10.hpp).
+enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9, tet4, tet10 };
 
 // Element formulation of a cell block: what the assembly computes on its cells.
 //  p1:        linear displacement triangle (tri3, one point);
@@ -49,17 +50,19 @@ inline const char* formulation_name(Formulation f) {
 inline int nodes_per_cell(CellType t) {
   switch (t) {
     case CellType::tri3: case CellType::stencil3: return 3;
-    case CellType::quad4: case CellType::stencil4: return 4;
+    case CellType::quad4: case CellType::stencil4: case CellType::tet4: return 4;
     case CellType::tri6: return 6;
     case CellType::quad9: return 9;
+    case CellType::tet10: return 10;
   }
   return 0;
 }
 inline CellType cell_type_of(Formulation f) {
   return f == Formulation::tri6 ? CellType::tri6 : f == Formulation::quad9 ? CellType::quad9 : CellType::tri3;
 }
-// Corner nodes of a cell of `stride` nodes: the first ones of its connectivity (tri3, tri6: 3; quad4, quad9: 4).
-inline int corners_of_stride(int stride) { return stride == 4 || stride == 9 ? 4 : 3; }
+// Corner nodes of a cell of `stride` nodes: the first ones of its connectivity (tri3, tri6: 3; quad4, quad9, tet4,
+// tet10: 4).
+inline int corners_of_stride(int stride) { return stride == 4 || stride == 9 || stride == 10 ? 4 : 3; }
 // Formulations with the nodal dilatation phi as an unknown.
 inline bool has_dilatation(Formulation f) { return f == Formulation::p1p1_uphi; }
 // Formulations with the nodal pressure p as an unknown on a mesh (seed 001 eq 25: sigma = dev sigma + p I).
@@ -70,7 +73,7 @@ inline bool integrates_on_domains(Formulation f) {
 }
 inline bool edge_smoothed(Formulation f) { return f == Formulation::es_up || f == Formulation::es_u; }
 inline const char* cell_type_name(CellType t) {
-  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4", "quad9"};
+  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4", "quad9", "tet4", "tet10"};
   return names[int(t)];
 }
 

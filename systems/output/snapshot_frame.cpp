@@ -54,7 +54,7 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
     for (Index c = 0; c < cb.size(); ++c) {
       for (int a = 0; a < cb.stride; ++a) frame.connectivity.push_back(cb.node(c, a));
       frame.offsets.push_back(Index(frame.connectivity.size()));
-      frame.cell_types.push_back(cb.type == CellType::tri3 ? kVtkTriangle : cb.type == CellType::quad9 ? kVtkBiquadraticQuad : kVtkQuadraticTriangle);
+      frame.cell_types.push_back(vtk_cell_type(cb.type));
     }
     for_each_index(cb.size(), [&](Index c) {
       const std::size_t k = std::size_t(first + c);
