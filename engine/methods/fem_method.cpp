@@ -152,7 +152,7 @@ void FemRun::build_graph() {
     const auto commit_walls = g.add_system("commit_wall_contact", &commit_wall_contact, m_.walls, m_.node_body, m_.nodes);
     g.run_if(commit_walls, &status_, [this] { return status_.converged; });
   }
-  const auto commit = g.add_system("commit", &commit_step, m_.cells, m_.nodes, m_.quad);
+  const auto commit = g.add_system("commit", &commit_step<2>, m_.cells, m_.nodes, m_.quad);
   g.run_if(commit, &status_, [this] { return status_.converged; });
   if (!m_.edges.empty()) {
     g.name_store(&m_.edges, "edges");

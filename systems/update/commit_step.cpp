@@ -8,30 +8,31 @@
 
 namespace loom {
 
-void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes,
-                 std::vector<QuadPoints<2>>& quad) {
+template <int D>
+void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<D>& nodes, std::vector<QuadPoints<D>>& quad) {
   // Triangles of seed 001's formulations are integrated on their domains (commit_domains); their one point
   // carries the triangle's P1 deformation gradient for output, advanced here while u_n is the old one.
   for (std::size_t b = 0; b < cells.size(); ++b) {
     if (!integrates_on_domains(cells[b].formulation)) continue;
-    QuadPoints<2>& q = quad[b];
+    LOOM_CHECK(D == 2, RunError, "commit_step: smoothed-domain formulations are two-dimensional");
+    QuadPoints<D>& q = quad[b];
     for_each_index(cells[b].size(), [&](Index c) {
-      NodalVectors<3> du;
-      for (int a = 0; a < 3; ++a) du.row(a) = (nodes.u[cells[b].node(c, a)] - nodes.u_n[cells[b].node(c, a)]).transpose();
-      q.F[c] = deformation_gradient<3>(du, Eigen::Map<const NodalVectors<3>>(q.grad(c)), q.F_n[c]);
+      NodalVectors<D + 1, D> du;
+      for (int a = 0; a < D + 1; ++a) du.row(a) = (nodes.u[cells[b].node(c, a)] - nodes.u_n[cells[b].node(c, a)]).transpose();
+      q.F[c] = deformation_gradient<D + 1, D>(du, Eigen::Map<const NodalVectors<D + 1, D>>(q.grad(c)), q.F_n[c]);
     });
   }
   const bool dynamic = nodes.v.used();
   const TimeIntegrator integrator = time_integrator_of(ctx.scene->time, ctx.dt);
   for_each_index(nodes.size(), [&](Index i) {
     if (dynamic && integrator.second_order()) {
-      const Vec2 du = nodes.u[i] - nodes.u_n[i];
-      nodes.a[i] = integrator.acceleration(du, nodes.v_n[i], nodes.a_n[i]);
-      nodes.v[i] = integrator.velocity(du, nodes.v_n[i], nodes.a_n[i], nodes.a[i]);
+      const Vec<D> du = nodes.u[i] - nodes.u_n[i];
+      nodes.a[i] = integrator.template acceleration<D>(du, nodes.v_n[i], nodes.a_n[i]);
+      nodes.v[i] = integrator.template velocity<D>(du, nodes.v_n[i], nodes.a_n[i], nodes.a[i]);
       nodes.a_n[i] = nodes.a[i];
       nodes.v_n[i] = nodes.v[i];
     } else if (dynamic) {
-      const Vec2 v = (nodes.u[i] - nodes.u_n[i]) / ctx.dt;
+      const Vec<D> v = (nodes.u[i] - nodes.u_n[i]) / ctx.dt;
       nodes.a[i] = (v - nodes.v_n[i]) / ctx.dt;
       nodes.v[i] = v;
       nodes.a_n[i] = nodes.a[i];
@@ -46,5 +47,8 @@ void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<
   // Newton accepted the state only if every cell had J > 0, so this is a contract, not user input.
   LOOM_CHECK(bad == 0, RunError, bad << " cells are inverted in the converged configuration of step " << ctx.step);
 }
+
+template void commit_step<2>(const StepContext&, const std::vector<Cells>&, Nodes<2>&, std::vector<QuadPoints<2>>&);
+template void commit_step<3>(const StepContext&, const std::vector<Cells>&, Nodes<3>&, std::vector<QuadPoints<3>>&);
 
 }  // namespace loom

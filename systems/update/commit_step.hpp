@@ -14,7 +14,8 @@
 
 namespace loom {
 
-void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes,
-                 std::vector<QuadPoints<2>>& quad);
+// Instantiated for D = 2 and 3 (3D: tet4, tet10 cells; not the smoothed-domain formulations).
+template <int D>
+void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<D>& nodes, std::vector<QuadPoints<D>>& quad);
 
 }  // namespace loom

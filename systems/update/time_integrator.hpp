@@ -12,6 +12,8 @@
 // A constant acceleration is integrated exactly when a_0 is the initial equilibrium one (free fall).
 #pragma once
 
+#include <type_traits>
+
 #include "engine/core/types.hpp"
 #include "engine/scene/scene_spec.hpp"
 
@@ -25,17 +27,22 @@ struct TimeIntegrator {
   bool dynamic() const { return kind != Integrator::static_; }
   bool second_order() const { return kind == Integrator::newmark || kind == Integrator::bossak; }
 
-  Vec2 acceleration(const Vec2& du, const Vec2& v_n, const Vec2& a_n) const {
+  // Per node in D dimensions (default 2, never deduced, as the element kernels: 3D callers write <3>).
+  template <int D = 2>
+  Vec<D> acceleration(const std::type_identity_t<Vec<D>>& du, const std::type_identity_t<Vec<D>>& v_n,
+                      const std::type_identity_t<Vec<D>>& a_n) const {
     if (!second_order()) return (du / dt - v_n) / dt;
     return (du - dt * v_n) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n;
   }
   // What multiplies M in the residual.
-  Vec2 inertial_acceleration(const Vec2& du, const Vec2& v_n, const Vec2& a_n) const {
+  template <int D = 2>
+  Vec<D> inertial_acceleration(const std::type_identity_t<Vec<D>>& du, const std::type_identity_t<Vec<D>>& v_n,
+                               const std::type_identity_t<Vec<D>>& a_n) const {
     if (!second_order()) {  // the expression of earlier Euler runs, bit for bit
       const double inv_dt = 1.0 / dt;
       return du * (inv_dt * inv_dt) - v_n * inv_dt;
     }
-    return (1.0 - alpha) * acceleration(du, v_n, a_n) + alpha * a_n;
+    return (1.0 - alpha) * acceleration<D>(du, v_n, a_n) + alpha * a_n;
   }
   // d (inertial acceleration) / d du.
   double stiffness() const {
@@ -45,7 +52,9 @@ struct TimeIntegrator {
     }
     return (1.0 - alpha) / (beta * dt * dt);
   }
-  Vec2 velocity(const Vec2& du, const Vec2& v_n, const Vec2& a_n, const Vec2& a) const {
+  template <int D = 2>
+  Vec<D> velocity(const std::type_identity_t<Vec<D>>& du, const std::type_identity_t<Vec<D>>& v_n,
+                  const std::type_identity_t<Vec<D>>& a_n, const std::type_identity_t<Vec<D>>& a) const {
     if (!second_order()) return du / dt;
     return v_n + dt * ((1.0 - gamma) * a_n + gamma * a);
   }
