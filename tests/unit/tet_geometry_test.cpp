@@ -1,11 +1,13 @@
 // compute_geometry in 3D (systems/assemble/compute_geometry.cpp) on tet4 and tet10 cell blocks of a distorted Kuhn
 // box: the point weights add up to the box's volume, the cached gradients reproduce an affine field at every point,
 // the points per cell follow the formulation (p1: 1, tri6 on tet10 and p1p1_uphi on tet4: the four-point rule), and
-// an inverted cell is counted.
+// an inverted cell is counted; the lumped masses (compute_lumped_mass in 3D) add up to rho V and are positive
+// (tet10: HRZ; the row sum would give the corners negative masses).
 #include <gtest/gtest.h>
 
 #include "engine/mesh/tet_generators.hpp"
 #include "systems/assemble/compute_geometry.hpp"
+#include "systems/update/lumped_mass.hpp"
 
 namespace loom {
 namespace {
@@ -60,6 +62,15 @@ void expect_geometry(CellType type, Formulation formulation, int per_cell) {
       EXPECT_LE((grad - g).norm(), 1e-12) << "cell " << c << " point " << q;
     }
   EXPECT_NEAR(volume, 1.0, 1e-13);
+
+  std::vector<BodyMaterial> materials(1);
+  materials[0].density = 2.5;
+  b.nodes.lumped_mass.use();
+  compute_lumped_mass(b.cells, quad, materials, b.nodes);
+  double mass = 0.0, smallest = INFINITY;
+  for (Index i = 0; i < b.nodes.size(); ++i) mass += b.nodes.lumped_mass[i], smallest = std::min(smallest, b.nodes.lumped_mass[i]);
+  EXPECT_NEAR(mass, 2.5, 1e-13);
+  EXPECT_GT(smallest, 0.0);
 }
 
 }  // namespace
