@@ -4,17 +4,22 @@
 
 namespace loom {
 
-void update_iterate(double step, const LinearSystem& system, Nodes<2>& nodes) {
+template <int D>
+void update_iterate(double step, const LinearSystem& system, Nodes<D>& nodes) {
   const int pn = system.dofs.per_node;
-  const bool phi = pn == 3 && nodes.phi.used(), p = pn == 3 && nodes.p_n.used();
+  // The node's dof after its D displacements is the dilatation phi or the pressure p (mixed formulations); in 3D a
+  // node of 3 dofs has none ("3 dofs per node" meant "mixed" only in 2D).
+  const bool extra = pn == D + 1;
+  const bool phi = extra && nodes.phi.used(), p = extra && nodes.p_n.used();
   for_each_index(nodes.size(), [&](Index i) {
-    for (int d = 0; d < 2; ++d) nodes.u[i][d] += step * system.increment_full[i * pn + d];
-    if (phi) nodes.phi[i] += step * system.increment_full[i * pn + 2];
-    if (p) nodes.p[i] += step * system.increment_full[i * pn + 2];
+    for (int d = 0; d < D; ++d) nodes.u[i][d] += step * system.increment_full[i * pn + d];
+    if (phi) nodes.phi[i] += step * system.increment_full[i * pn + D];
+    if (p) nodes.p[i] += step * system.increment_full[i * pn + D];
   });
 }
 
-void reset_iterate(Nodes<2>& nodes) {
+template <int D>
+void reset_iterate(Nodes<D>& nodes) {
   const bool phi = nodes.phi.used(), p = nodes.p_n.used();
   for_each_index(nodes.size(), [&](Index i) {
     nodes.u[i] = nodes.u_n[i];
@@ -22,5 +27,10 @@ void reset_iterate(Nodes<2>& nodes) {
     if (p) nodes.p[i] = nodes.p_n[i];
   });
 }
+
+template void update_iterate<2>(double, const LinearSystem&, Nodes<2>&);
+template void update_iterate<3>(double, const LinearSystem&, Nodes<3>&);
+template void reset_iterate<2>(Nodes<2>&);
+template void reset_iterate<3>(Nodes<3>&);
 
 }  // namespace loom

@@ -7,9 +7,12 @@
 
 namespace loom {
 
-void update_iterate(double step, const LinearSystem& system, Nodes<2>& nodes);
+// Instantiated for D = 2 and 3; the dof after a node's D displacements (per_node = D + 1) is phi or p.
+template <int D>
+void update_iterate(double step, const LinearSystem& system, Nodes<D>& nodes);
 
 // Starts a (sub)step from the converged state: u = u_n, phi = phi_n (also after a failed attempt).
-void reset_iterate(Nodes<2>& nodes);
+template <int D>
+void reset_iterate(Nodes<D>& nodes);
 
 }  // namespace loom
