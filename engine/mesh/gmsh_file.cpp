@@ -212,17 +212,16 @@ GmshFile read_gmsh_file(const std::string& path, const std::string& where, const
   return file;
 }
 
-const std::vector<std::size_t>* group_elements_of(const GmshFile& file, const std::string& name, int dim) {
+std::unordered_set<std::size_t> elements_of_group(const GmshFile& file, const std::string& name, int dim, const std::string& where,
+                                                  const std::string& key) {
+  if (name.empty()) return {};
   for (std::size_t k = 0; k < file.groups.size(); ++k)
-    if (file.groups[k].name == name && file.groups[k].dim == dim) return &file.group_elements[k];
-  return nullptr;
-}
-
-std::string group_list(const GmshFile& file) {
+    if (file.groups[k].name == name && file.groups[k].dim == dim) return {file.group_elements[k].begin(), file.group_elements[k].end()};
   const char* kinds[] = {"point", "curve", "surface", "volume"};
-  std::string s;
-  for (const auto& g : file.groups) s += (s.empty() ? "" : ", ") + ("\"" + g.name + "\" (" + kinds[std::clamp(g.dim, 0, 3)] + ")");
-  return s.empty() ? "none" : s;
+  std::string groups;
+  for (const auto& g : file.groups) groups += (groups.empty() ? "" : ", ") + ("\"" + g.name + "\" (" + kinds[std::clamp(g.dim, 0, 3)] + ")");
+  throw InputError(where + ": error: " + key + ": " + file.path + ": no physical " + kinds[std::clamp(dim, 0, 3)] + " named \"" + name +
+                   "\" (its physical groups: " + (groups.empty() ? "none" : groups) + ")");
 }
 
 }  // namespace loom

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -46,9 +47,10 @@ struct GmshFile {
 // libgmsh is not installed.
 GmshFile read_gmsh_file(const std::string& path, const std::string& where, const std::string& key);
 
-// The element tags of the physical group `name` of dimension `dim`; nullptr if the file has no such group.
-const std::vector<std::size_t>* group_elements_of(const GmshFile& file, const std::string& name, int dim);
-// The physical groups for messages: "\"bottom\" (curve), \"plate\" (surface)", or "none".
-std::string group_list(const GmshFile& file);
+// The element tags of the physical group `name` of dimension `dim` (a body's surface or volume); an empty set for
+// an empty name (every element). Throws InputError "<where>: error: <key>: <path>: no physical <kind> named ..."
+// listing the file's groups if there is no such group.
+std::unordered_set<std::size_t> elements_of_group(const GmshFile& file, const std::string& name, int dim, const std::string& where,
+                                                  const std::string& key);
 
 }  // namespace loom

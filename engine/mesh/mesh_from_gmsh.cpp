@@ -31,12 +31,7 @@ MeshData triangle_mesh_of(const GmshFile& file, const std::string& surface, cons
   auto fail = [&](const std::string& why) { throw InputError(where + ": error: " + key + ": " + file.path + ": " + why); };
 
   // Which 2D elements make the body.
-  std::unordered_set<std::size_t> selected;
-  if (!surface.empty()) {
-    const auto* group = group_elements_of(file, surface, 2);
-    if (!group) fail("no physical surface named \"" + surface + "\" (its physical groups: " + group_list(file) + ")");
-    selected.insert(group->begin(), group->end());
-  }
+  const std::unordered_set<std::size_t> selected = elements_of_group(file, surface, 2, where, key);
   const GmshElementBlock* tri = nullptr;
   for (const auto& b : file.blocks) {
     if (b.dim == 3) fail("it holds volume elements (" + b.name + "): loom reads two-dimensional meshes (scene.dimension = 2)");

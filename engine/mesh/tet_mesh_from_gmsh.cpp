@@ -31,12 +31,7 @@ double tet10_jacobian(const Vec3 x[10], const double l[4]) {
 
 TetMeshFile tet_mesh_of(const GmshFile& file, const std::string& volume, const std::string& where, const std::string& key) {
   auto fail = [&](const std::string& why) { throw InputError(where + ": error: " + key + ": " + file.path + ": " + why); };
-  std::unordered_set<std::size_t> selected;
-  if (!volume.empty()) {
-    const auto* group = group_elements_of(file, volume, 3);
-    if (!group) fail("no physical volume named \"" + volume + "\" (its physical groups: " + group_list(file) + ")");
-    selected.insert(group->begin(), group->end());
-  }
+  const std::unordered_set<std::size_t> selected = elements_of_group(file, volume, 3, where, key);
   const GmshElementBlock* tets = nullptr;
   for (const auto& b : file.blocks) {
     if (b.dim != 3) continue;

@@ -12,16 +12,13 @@
 #include "systems/assemble/elements/p1p1_uphi_cell.hpp"
 #include "systems/assemble/elements/tet10.hpp"
 #include "systems/assemble/elements/tet4.hpp"
+#include "tests/unit/general_tetrahedron.hpp"
 #include "systems/assemble/materials/material.hpp"
 
 namespace loom {
 namespace {
 
-Tet4Corners corners() {
-  Tet4Corners x;
-  x << 0.1, -0.2, 0.3, 1.4, 0.1, 0.2, 0.3, 1.2, -0.1, 0.2, 0.4, 1.5;
-  return x;
-}
+Tet4Corners corners() { return testing::general_tetrahedron(); }
 
 Mat3 history(int q) {
   Mat3 F;

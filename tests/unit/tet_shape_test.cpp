@@ -10,16 +10,12 @@
 #include "systems/assemble/elements/element_mass.hpp"
 #include "systems/assemble/elements/tet10.hpp"
 #include "systems/assemble/elements/tet4.hpp"
+#include "tests/unit/general_tetrahedron.hpp"
 
 namespace loom {
 namespace {
 
-// A general tetrahedron (no face parallel to a coordinate plane), positively oriented.
-Tet4Corners corners() {
-  Tet4Corners x;
-  x << 0.1, -0.2, 0.3, 1.4, 0.1, 0.2, 0.3, 1.2, -0.1, 0.2, 0.4, 1.5;
-  return x;
-}
+Tet4Corners corners() { return testing::general_tetrahedron(); }
 
 Tet10Nodes tet10_nodes(const Tet4Corners& x) {
   Tet10Nodes n;

@@ -36,10 +36,12 @@ inline Eigen::Matrix<double, 6, 6> tri6_consistent_mass(double area0) {
 }
 
 // HRZ lumping: m^A = M^AA * total / trace(M).
-inline Eigen::Matrix<double, 6, 1> tri6_lumped_mass(double area0) {
-  const Eigen::Matrix<double, 6, 6> M = tri6_consistent_mass(area0);
-  return M.diagonal() * (area0 / M.trace());
+template <int N>
+Eigen::Matrix<double, N, 1> hrz_lumped_mass(const Eigen::Matrix<double, N, N>& M, double total) {
+  return M.diagonal() * (total / M.trace());
 }
+
+inline Eigen::Matrix<double, 6, 1> tri6_lumped_mass(double area0) { return hrz_lumped_mass<6>(tri6_consistent_mass(area0), area0); }
 
 inline Eigen::Matrix4d tet4_consistent_mass(double volume0) {
   Eigen::Matrix4d M = Eigen::Matrix4d::Constant(volume0 / 20.0);
@@ -56,10 +58,7 @@ inline Eigen::Matrix<double, 10, 10> tet10_consistent_mass(double volume0) {
   return M;
 }
 
-inline Tet10Values tet10_lumped_mass(double volume0) {
-  const Eigen::Matrix<double, 10, 10> M = tet10_consistent_mass(volume0);
-  return M.diagonal() * (volume0 / M.trace());
-}
+inline Tet10Values tet10_lumped_mass(double volume0) { return hrz_lumped_mass<10>(tet10_consistent_mass(volume0), volume0); }
 
 // dV0[q]: the reference volume of Gauss point q (quad9_gauss order).
 inline Eigen::Matrix<double, 9, 9> quad9_consistent_mass(const double* dV0) {
