@@ -140,7 +140,7 @@ void FemRun::build_graph() {
       return due;
     });
   }
-  g.add_system("apply_boundary_conditions", &apply_boundary_conditions, m_.nodes, m_.cells, m_.materials, m_.bc);
+  g.add_system("apply_boundary_conditions", &apply_boundary_conditions<2>, m_.nodes, m_.cells, m_.materials, m_.bc);
   if (!m_.walls.empty()) {
     g.name_store(&m_.walls, "walls");
     g.name_store(&m_.node_body, "node_body");

@@ -31,10 +31,11 @@ inline NewtonSettings newton_settings_of(const SolverSpec& solver) {
   return s;
 }
 
-class FemNewtonProblem final : public NonlinearProblem {
+template <int D>
+class FemNewtonProblemT final : public NonlinearProblem {
  public:
-  FemNewtonProblem(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const std::vector<Cells>& cells,
-                   const BoundaryConditions<2>& bc, Nodes<2>& nodes, std::vector<QuadPoints<2>>& quad,
+  FemNewtonProblemT(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const std::vector<Cells>& cells,
+                   const BoundaryConditions<D>& bc, Nodes<D>& nodes, std::vector<QuadPoints<D>>& quad,
                    LinearSystem& system, LinearSolve& solver, Timers& timers, std::vector<Edges<2>>* domains = nullptr)
       : ctx_(ctx), materials_(materials), cells_(cells), bc_(bc), nodes_(nodes), quad_(quad), system_(system),
         solver_(solver), timers_(timers), domains_(domains) {}
@@ -45,11 +46,12 @@ class FemNewtonProblem final : public NonlinearProblem {
   bool assemble(bool with_tangent) override {
     const auto mode = with_tangent ? AssemblyMode::residual_and_tangent : AssemblyMode::residual;
     fresh_tangent_ = fresh_tangent_ || with_tangent;
-    const bool ok = assemble_system(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
-    if (walls_ && !walls_->empty()) {
-      ScopedTimer t(timers_, "newton/assemble/walls");
-      add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
-    }
+    const bool ok = assemble_system<D>(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
+    if constexpr (D == 2)
+      if (walls_ && !walls_->empty()) {
+        ScopedTimer t(timers_, "newton/assemble/walls");
+        add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
+      }
     return ok;
   }
   double residual_norm() const override { return system_.residual.norm(); }
@@ -59,7 +61,7 @@ class FemNewtonProblem final : public NonlinearProblem {
     return solve_linear_step(nodes_, bc_, solver_, system_, timers_, refactorize) == LinearSolveStatus::ok;
   }
   std::string solve_failure() const override { return solver_.failure().empty() ? "the tangent matrix is singular" : solver_.failure(); }
-  void update(double step) override { update_iterate(step, system_, nodes_); }
+  void update(double step) override { update_iterate<D>(step, system_, nodes_); }
   // |du| on the displacement dofs when a pressure is an unknown too (stress units do not compare with
   // step_change_norm's lengths).
   double increment_norm() const override {
@@ -77,7 +79,7 @@ class FemNewtonProblem final : public NonlinearProblem {
     return std::sqrt(s);
   }
   // u-p formulations (seed 001): the momentum and the pressure residuals are converged separately.
-  int blocks() const override { return nodes_.p_n.used() && system_.dofs.per_node == 3 ? 2 : 1; }
+  int blocks() const override { return nodes_.p_n.used() && system_.dofs.per_node == D + 1 ? 2 : 1; }
   double block_norm(int block) const override {
     return blocks() == 1 ? residual_norm() : block_part_norm(system_.residual, block == 1);
   }
@@ -93,9 +95,9 @@ class FemNewtonProblem final : public NonlinearProblem {
   const StepContext& ctx_;
   const std::vector<BodyMaterial>& materials_;
   const std::vector<Cells>& cells_;
-  const BoundaryConditions<2>& bc_;
-  Nodes<2>& nodes_;
-  std::vector<QuadPoints<2>>& quad_;
+  const BoundaryConditions<D>& bc_;
+  Nodes<D>& nodes_;
+  std::vector<QuadPoints<D>>& quad_;
   LinearSystem& system_;
   LinearSolve& solver_;
   Timers& timers_;
@@ -104,7 +106,7 @@ class FemNewtonProblem final : public NonlinearProblem {
     const DofMap& dofs = system_.dofs;
     double sum = 0.0;
     for (Index dof = 0; dof < dofs.n_dofs(); ++dof)
-      if (const Index eq = dofs.equation[std::size_t(dof)]; eq != kNoIndex && (dof % dofs.per_node == 2) == pressure) sum += v[eq] * v[eq];
+      if (const Index eq = dofs.equation[std::size_t(dof)]; eq != kNoIndex && (dof % dofs.per_node == D) == pressure) sum += v[eq] * v[eq];
     return std::sqrt(sum);
   }
 
@@ -113,5 +115,7 @@ class FemNewtonProblem final : public NonlinearProblem {
   const std::vector<Index>* node_body_ = nullptr;
   bool fresh_tangent_ = false;  // a tangent was assembled since the last factorisation
 };
+
+using FemNewtonProblem = FemNewtonProblemT<2>;
 
 }  // namespace loom

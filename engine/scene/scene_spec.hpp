@@ -212,6 +212,7 @@ struct ProbeSpec {
   int component = 0;          // 0: x, 1: y (wall_force: 2, along the wall's normal)
   StressComponent stress = StressComponent::xx;  // stress
   Vec2 at = Vec2::Zero();     // point, stress
+  double at_z = 0.0;          // its z in a 3D scene
   std::string group;          // point, stress: a physical point of the mesh file instead of `at` (resolved into `at`)
   Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
   bool max = true;            // extent: largest (true) or smallest coordinate

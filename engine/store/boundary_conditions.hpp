@@ -24,6 +24,14 @@ struct TractionEdge {
   std::array<Index, D> expression;
 };
 
+// A boundary face of a tetrahedral mesh carrying a traction: corners counter-clockwise seen from outside
+// (nodes[0..2]), the mid-nodes of its edges 01, 12, 20 on a quadratic face (nodes[3..5]; kNoIndex when linear),
+// the expression of each component (kNoIndex: zero).
+struct TractionFace {
+  std::array<Index, 6> nodes;
+  std::array<Index, 3> expression;
+};
+
 template <int D>
 struct BoundaryConditions {
   std::vector<Expression> expressions;  // compiled; referenced by index below
@@ -39,6 +47,7 @@ struct BoundaryConditions {
 
   using TractionEdge = loom::TractionEdge<D>;
   std::vector<TractionEdge> traction_edges;
+  std::vector<TractionFace> traction_faces;  // D = 3
 
   std::vector<std::array<Index, D>> body_force;  // per body, per component; kNoIndex: zero
   std::vector<Tie> ties;                           // dofs tied to the mean of two others (PFEM TRI6, eq 24)

@@ -28,9 +28,11 @@ struct AssemblyResult {
   Index inverted_cells = 0;  // cells where J <= 0 at the iterate: the residual is meaningless
 };
 
+// Instantiated for D = 2 and 3; the smoothing domains exist in 2D only (seed 001's edges).
+template <int D>
 AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const std::vector<BodyMaterial>& materials,
-                               const Nodes<2>& nodes, const std::vector<Cells>& cells,
-                               const BoundaryConditions<2>& bc, std::vector<QuadPoints<2>>& quad,
+                               const Nodes<D>& nodes, const std::vector<Cells>& cells,
+                               const BoundaryConditions<D>& bc, std::vector<QuadPoints<D>>& quad,
                                LinearSystem& system, std::vector<Edges<2>>* domains = nullptr);
 
 }  // namespace loom

@@ -14,11 +14,12 @@
 
 namespace loom {
 
-// Value of a dof at the iterate: displacement components first, then phi or p.
-inline double dof_value(const Nodes<2>& nodes, Index dof, int per_node) {
+// Value of a dof at the iterate: the D displacement components first, then phi or p.
+template <int D>
+inline double dof_value(const Nodes<D>& nodes, Index dof, int per_node) {
   const Index node = dof / per_node;
   const int comp = dof % per_node;
-  return comp < 2 ? nodes.u[node][comp] : nodes.phi.used() ? nodes.phi[node] : nodes.p[node];
+  return comp < D ? nodes.u[node][comp] : nodes.phi.used() ? nodes.phi[node] : nodes.p[node];
 }
 
 // The element's local dofs in its own layout, mapped to the cell's dofs in the scatter (node-major with
@@ -28,22 +29,22 @@ struct LocalMap {
   int to_scatter[NE];
 };
 
-template <int NEN>
-inline LocalMap<2 * NEN> displacement_map(int per_node) {
-  LocalMap<2 * NEN> m{};
+template <int NEN, int D = 2>
+inline LocalMap<D * NEN> displacement_map(int per_node) {
+  LocalMap<D * NEN> m{};
   for (int a = 0; a < NEN; ++a)
-    for (int i = 0; i < 2; ++i) m.to_scatter[2 * a + i] = a * per_node + i;
+    for (int i = 0; i < D; ++i) m.to_scatter[D * a + i] = a * per_node + i;
   return m;
 }
 
 // Scatters a cell's local residual (with the Dirichlet lift) and tangent; see assemble_system.hpp.
-template <int NE>
+template <int NE, int D = 2>
 class CellScatterer {
  public:
   using Vector = Eigen::Matrix<double, NE, 1>;
   using Matrix = Eigen::Matrix<double, NE, NE>;
 
-  CellScatterer(const LocalMap<NE>& map, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& nodes,
+  CellScatterer(const LocalMap<NE>& map, const CellScatter& sc, const BoundaryConditions<D>& bc, const Nodes<D>& nodes,
                 LinearSystem& system)
       : map_(map), sc_(sc), bc_(bc), nodes_(nodes), system_(system) {
     std::fill(std::begin(from_scatter_), std::end(from_scatter_), -1);
@@ -101,11 +102,11 @@ class CellScatterer {
   }
 
  private:
-  int from_scatter_[18];  // scatter-local index (at most 6 nodes x 3 dofs) -> element-local index (-1: not the element's)
+  int from_scatter_[40];  // scatter-local index (at most 10 nodes x 4 dofs) -> element-local index (-1: not the element's)
   const LocalMap<NE>& map_;
   const CellScatter& sc_;
-  const BoundaryConditions<2>& bc_;
-  const Nodes<2>& nodes_;
+  const BoundaryConditions<D>& bc_;
+  const Nodes<D>& nodes_;
   LinearSystem& system_;
 };
 

@@ -22,7 +22,7 @@ void for_each_active_cell_by_colour(const GridActivity& act, Body&& body, Index 
                 Execution::parallel, grain);
 }
 
-inline double dof_value(const Nodes<2>& g, Index dof, int pn) {
+inline double grid_dof_value(const Nodes<2>& g, Index dof, int pn) {
   const Index node = dof / pn;
   const int comp = dof % pn;
   return comp < 2 ? g.u[node][comp] : g.p[node];
@@ -33,7 +33,7 @@ inline double dof_value(const Nodes<2>& g, Index dof, int pn) {
 inline bool cell_lags(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, const DofMap& dofs) {
   for (int k = 0; k < sc.dofs_per_cell; ++k) {
     const Index dof = sc.cell_dof(entry, k);
-    if (dofs.kind[std::size_t(dof)] == DofKind::prescribed && bc.target[dof] != dof_value(g, dof, dofs.per_node)) return true;
+    if (dofs.kind[std::size_t(dof)] == DofKind::prescribed && bc.target[dof] != grid_dof_value(g, dof, dofs.per_node)) return true;
   }
   return false;
 }
@@ -64,7 +64,7 @@ void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<2
   for (int k = 0; k < NE; ++k) {
     const Index dof = sc.cell_dof(entry, k);
     if (system.dofs.kind[std::size_t(dof)] != DofKind::prescribed) continue;
-    gap[k] = bc.target[dof] - dof_value(g, dof, pn);
+    gap[k] = bc.target[dof] - grid_dof_value(g, dof, pn);
     lagging = lagging || gap[k] != 0.0;
   }
   if (lagging) r += K * gap;

@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "engine/mesh/quad9_shape.hpp"
+#include "systems/assemble/elements/tet10.hpp"
+#include "systems/assemble/elements/tet4.hpp"
 #include "systems/assemble/elements/tri3.hpp"
 #include "systems/assemble/elements/tri6.hpp"
 
@@ -94,17 +96,77 @@ void add_body_forces(double t, const Nodes<2>& nodes, const std::vector<Cells>& 
     }
 }
 
+// 3D: dead-load tractions on the faces (area in the reference configuration, flat faces), by the degree-4
+// triangle rule: exact for the quadratic shape functions times tractions up to quadratic.
+void add_tractions(double t, const Nodes<3>& nodes, BoundaryConditions<3>& bc) {
+  for (const TractionFace& f : bc.traction_faces) {
+    const Vec3 &X0 = nodes.X[f.nodes[0]], &X1 = nodes.X[f.nodes[1]], &X2 = nodes.X[f.nodes[2]];
+    const double area = 0.5 * (X1 - X0).cross(X2 - X0).norm();
+    const bool quadratic = f.nodes[3] != kNoIndex;
+    for (const auto& p : kTriangleRule6) {
+      const Vec3 X = p.l[0] * X0 + p.l[1] * X1 + p.l[2] * X2;
+      const Tri6Values N6 = tri6_values(p.l[0], p.l[1], p.l[2]);
+      const int n = quadratic ? 6 : 3;
+      for (int d = 0; d < 3; ++d) {
+        if (f.expression[std::size_t(d)] == kNoIndex) continue;
+        const double value = p.w * area * bc.expressions[std::size_t(f.expression[std::size_t(d)])](t, X.x(), X.y(), X.z());
+        for (int a = 0; a < n; ++a) bc.external[bc.per_node * f.nodes[std::size_t(a)] + d] += (quadratic ? N6[a] : p.l[a]) * value;
+      }
+    }
+  }
+}
+
+// 3D: f^A = int rho_0 N^A b dV_0 on the straight reference tetrahedron; tet4 by the four-point rule (degree 2),
+// tet10 by the fourteen-point one (degree 5).
+void add_body_forces(double t, const Nodes<3>& nodes, const std::vector<Cells>& cells, const std::vector<BodyMaterial>& materials,
+                     BoundaryConditions<3>& bc) {
+  for (const Cells& cb : cells)
+    for (Index c = 0; c < cb.size(); ++c) {
+      const Index body = cb.body[c];
+      const auto& exprs = bc.body_force[std::size_t(body)];
+      if (exprs[0] == kNoIndex && exprs[1] == kNoIndex && exprs[2] == kNoIndex) continue;
+      const Index* n = cb.cell_nodes(c);
+      const double rho = materials[std::size_t(body)].density;
+      const Vec3 X[4] = {nodes.X[n[0]], nodes.X[n[1]], nodes.X[n[2]], nodes.X[n[3]]};
+      const double volume = (X[1] - X[0]).dot((X[2] - X[0]).cross(X[3] - X[0])) / 6.0;
+      auto add_point = [&](const double* l, double weight, const double* N, int n_nodes) {
+        const Vec3 Xq = l[0] * X[0] + l[1] * X[1] + l[2] * X[2] + l[3] * X[3];
+        for (int d = 0; d < 3; ++d) {
+          if (exprs[std::size_t(d)] == kNoIndex) continue;
+          const double b = bc.expressions[std::size_t(exprs[std::size_t(d)])](t, Xq.x(), Xq.y(), Xq.z());
+          for (int a = 0; a < n_nodes; ++a) bc.external[bc.per_node * n[a] + d] += rho * b * N[a] * weight * volume;
+        }
+      };
+      if (cb.type == CellType::tet10) {
+        for (const auto& p : kTetrahedronRule14) {
+          const Tet10Values N = tet10_values(p.l);
+          add_point(p.l, p.w, N.data(), 10);
+        }
+      } else {
+        for (const auto& l : kTet4Rule4) add_point(l, 0.25, l, 4);
+      }
+    }
+}
+
+template <int D>
+Vec3 position(const Nodes<D>& nodes, Index i) {
+  Vec3 X = Vec3::Zero();
+  X.head<D>() = nodes.X[i];
+  return X;
+}
+
 }  // namespace
 
-void apply_boundary_conditions(const StepContext& ctx, const Nodes<2>& nodes, const std::vector<Cells>& cells,
-                               const std::vector<BodyMaterial>& materials, BoundaryConditions<2>& bc) {
+template <int D>
+void apply_boundary_conditions(const StepContext& ctx, const Nodes<D>& nodes, const std::vector<Cells>& cells,
+                               const std::vector<BodyMaterial>& materials, BoundaryConditions<D>& bc) {
   for (const auto& p : bc.prescribed) {
     if (p.expression == kNoIndex) {  // driven at a velocity: u = u_n + dt v
       bc.target[p.dof] = nodes.u_n[p.node][p.dof % bc.per_node] + ctx.dt * p.velocity;
       continue;
     }
-    const Vec2& X = nodes.X[p.node];
-    bc.target[p.dof] = bc.expressions[std::size_t(p.expression)](ctx.t, X.x(), X.y());
+    const Vec3 X = position(nodes, p.node);
+    bc.target[p.dof] = bc.expressions[std::size_t(p.expression)](ctx.t, X.x(), X.y(), X.z());
   }
   const bool fresh = bc.external_time == ctx.t || (!bc.loads_depend_on_time && !std::isnan(bc.external_time));
   if (fresh) return;
@@ -115,5 +177,10 @@ void apply_boundary_conditions(const StepContext& ctx, const Nodes<2>& nodes, co
   }
   bc.external_time = ctx.t;
 }
+
+template void apply_boundary_conditions<2>(const StepContext&, const Nodes<2>&, const std::vector<Cells>&, const std::vector<BodyMaterial>&,
+                                           BoundaryConditions<2>&);
+template void apply_boundary_conditions<3>(const StepContext&, const Nodes<3>&, const std::vector<Cells>&, const std::vector<BodyMaterial>&,
+                                           BoundaryConditions<3>&);
 
 }  // namespace loom

@@ -15,7 +15,9 @@
 
 namespace loom {
 
-void apply_boundary_conditions(const StepContext& ctx, const Nodes<2>& nodes, const std::vector<Cells>& cells,
-                               const std::vector<BodyMaterial>& materials, BoundaryConditions<2>& bc);
+// Instantiated for D = 2 (edges, triangles, quad9) and D = 3 (3- and 6-node faces, tet4 and tet10).
+template <int D>
+void apply_boundary_conditions(const StepContext& ctx, const Nodes<D>& nodes, const std::vector<Cells>& cells,
+                               const std::vector<BodyMaterial>& materials, BoundaryConditions<D>& bc);
 
 }  // namespace loom

@@ -58,8 +58,9 @@ double gauss_lagrange_weight(const std::array<double, 3>& l, int q) {
 // Area of a probe's body cells (weights: dV_n per point, or the seed-001 triangles' reference areas A_0 times rho)
 // on the downstream side of an inlet's section when the plan has one. Summed point by point in cell order, so that
 // an unclipped volume is the plain sum of the weights dV_n.
-double body_measure(const ProbePlan& plan, std::size_t k, bool mass, const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes,
-                    const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad) {
+template <int D>
+double body_measure(const ProbePlan& plan, std::size_t k, bool mass, const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes,
+                    const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad) {
   const ProbeSpec& p = plan.probes[k];
   const double rho = materials[std::size_t(p.body)].density;
   double sum = 0.0;
@@ -68,9 +69,11 @@ double body_measure(const ProbePlan& plan, std::size_t k, bool mass, const std::
     const bool reference_area = integrates_on_domains(cb.formulation) && cb.measure.used();
     for (Index c = 0; c < cb.size(); ++c) {
       if (cb.body[c] != p.body) continue;
-      const double f = p.inlet == kNoIndex ? 1.0
-                                            : fraction_downstream(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)),
-                                                                  nodes.position_n(cb.node(c, 2)), plan.downstream[k][0], plan.downstream[k][1]);
+      double f = 1.0;
+      if constexpr (D == 2)
+        if (p.inlet != kNoIndex)
+          f = fraction_downstream(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2)),
+                                  plan.downstream[k][0], plan.downstream[k][1]);
       if (mass && reference_area) {
         sum += rho * cb.measure[c] * f;
         continue;
@@ -107,7 +110,8 @@ double fraction_downstream(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
   return area / whole;
 }
 
-ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Cells>& cells,
+template <int D>
+ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::vector<Cells>& cells,
                       const std::vector<Index>& node_body) {
   ProbePlan plan;
   plan.probes = scene.probes;
@@ -119,13 +123,13 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
       double best_d = std::numeric_limits<double>::max();
       for (Index i = 0; i < nodes.size(); ++i) {
         if (p.body != kNoIndex && node_body[std::size_t(i)] != p.body) continue;
-        const double d = (nodes.X[i] - p.at).squaredNorm();
+        const double d = (nodes.X[i] - probe_point<D>(p)).squaredNorm();
         if (d < best_d) best_d = d, best = i;
       }
     } else if (p.kind == ProbeKind::extent || p.kind == ProbeKind::speed) {
       for (Index i = 0; i < nodes.size(); ++i)
         if (node_body[std::size_t(i)] == p.body) body_nodes.push_back(i);
-    } else if (p.kind == ProbeKind::pressure_jump) {
+    } else if (D == 2 && p.kind == ProbeKind::pressure_jump) {
       // Interior edges: corner pairs shared by two cells of the body (in the same block).
       for (std::size_t b = 0; b < cells.size(); ++b) {
         std::map<std::uint64_t, Index> first;
@@ -143,8 +147,9 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
       }
     }
     std::vector<StressSample> samples;
-    if (p.kind == ProbeKind::stress)
-      for (std::size_t b = 0; b < cells.size(); ++b) {
+    if constexpr (D == 2)  // the loader refuses stress probes in 3D
+      if (p.kind == ProbeKind::stress)
+        for (std::size_t b = 0; b < cells.size(); ++b) {
         const Cells& cb = cells[b];
         for (Index c = 0; c < cb.size(); ++c) {
           if (p.body != kNoIndex && cb.body[c] != p.body) continue;
@@ -175,9 +180,10 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::
   return plan;
 }
 
+template <int D>
 void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                     const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
-                     const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                     const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
+                     const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                      const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
@@ -242,10 +248,11 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         break;
       }
       case ProbeKind::angular_momentum: {  // about `at`, of the lumped nodal masses at the converged step
-        double L = 0.0;
+        double L = 0.0;  // 2D: the out-of-plane moment; 3D: the moment's component
         for (Index i = 0; i < nodes.size(); ++i) {
-          const Vec2 r = nodes.position_n(i) - p.at;
-          L += nodes.lumped_mass[i] * (r.x() * nodes.v_n[i].y() - r.y() * nodes.v_n[i].x());
+          const Vec<D> r = nodes.position_n(i) - probe_point<D>(p);
+          if constexpr (D == 2) L += nodes.lumped_mass[i] * (r.x() * nodes.v_n[i].y() - r.y() * nodes.v_n[i].x());
+          else L += nodes.lumped_mass[i] * r.cross(nodes.v_n[i])[p.component];
         }
         values[k] = L;
         break;
@@ -260,32 +267,45 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         break;
       }
       case ProbeKind::stress: {
-        Mat3 mean = Mat3::Zero();
-        for (const StressSample& s : plan.samples[k]) {
-          const QuadPoints<2>& q = quad[std::size_t(s.block)];
-          const BodyMaterial& m = materials[std::size_t(cells[std::size_t(s.block)].body[s.cell])];
-          for (int i = 0; i < q.per_cell; ++i) {
-            Mat3 sigma;
-            if (!point_stress(m, q, s.cell * q.per_cell + i, sigma)) sigma.setConstant(kNaN);
-            const double w = q.per_cell == 1 ? 1.0 : q.per_cell == 9 ? gauss_lagrange_weight(s.l, i) : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
-            mean += w * sigma / double(plan.samples[k].size());
+        if constexpr (D == 2) {
+          Mat3 mean = Mat3::Zero();
+          for (const StressSample& s : plan.samples[k]) {
+            const QuadPoints<D>& q = quad[std::size_t(s.block)];
+            const BodyMaterial& m = materials[std::size_t(cells[std::size_t(s.block)].body[s.cell])];
+            for (int i = 0; i < q.per_cell; ++i) {
+              Mat3 sigma;
+              if (!point_stress(m, q, s.cell * q.per_cell + i, sigma)) sigma.setConstant(kNaN);
+              const double w = q.per_cell == 1 ? 1.0 : q.per_cell == 9 ? gauss_lagrange_weight(s.l, i) : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
+              mean += w * sigma / double(plan.samples[k].size());
+            }
           }
+          values[k] = plan.samples[k].empty() ? kNaN : stress_component(mean, p.stress);
         }
-        values[k] = plan.samples[k].empty() ? kNaN : stress_component(mean, p.stress);
         break;
       }
       case ProbeKind::pressure_jump: {
-        double sum = 0.0;
-        for (const auto& [block, c1, c2] : plan.cell_pairs[k]) {
-          const Cells& cb = cells[std::size_t(block)];
-          const BodyMaterial& m = materials[std::size_t(cb.body[c1])];
-          sum += std::abs(cell_pressure(m, quad[std::size_t(block)], c1) - cell_pressure(m, quad[std::size_t(block)], c2));
+        if constexpr (D == 2) {
+          double sum = 0.0;
+          for (const auto& [block, c1, c2] : plan.cell_pairs[k]) {
+            const Cells& cb = cells[std::size_t(block)];
+            const BodyMaterial& m = materials[std::size_t(cb.body[c1])];
+            sum += std::abs(cell_pressure(m, quad[std::size_t(block)], c1) - cell_pressure(m, quad[std::size_t(block)], c2));
+          }
+          values[k] = plan.cell_pairs[k].empty() ? 0.0 : sum / double(plan.cell_pairs[k].size());
         }
-        values[k] = plan.cell_pairs[k].empty() ? 0.0 : sum / double(plan.cell_pairs[k].size());
         break;
       }
     }
   }
 }
+
+template ProbePlan plan_probes<2>(const SceneSpec&, const Nodes<2>&, const std::vector<Cells>&, const std::vector<Index>&);
+template ProbePlan plan_probes<3>(const SceneSpec&, const Nodes<3>&, const std::vector<Cells>&, const std::vector<Index>&);
+template void evaluate_probes<2>(const StepContext&, const ProbePlan&, const std::vector<BodyMaterial>&, const Nodes<2>&,
+                                 const std::vector<Cells>&, const std::vector<QuadPoints<2>>&, const LinearSystem&,
+                                 const BoundaryConditions<2>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&);
+template void evaluate_probes<3>(const StepContext&, const ProbePlan&, const std::vector<BodyMaterial>&, const Nodes<3>&,
+                                 const std::vector<Cells>&, const std::vector<QuadPoints<3>>&, const LinearSystem&,
+                                 const BoundaryConditions<3>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&);
 
 }  // namespace loom

@@ -45,6 +45,13 @@ struct StressSample {
   std::array<double, 3> l{};  // barycentric coordinates of the point in the cell's corner triangle; quad9: (xi, eta, 0)
 };
 
+// The probe's reference point `at` in D dimensions (3D: with at_z).
+template <int D>
+inline Vec<D> probe_point(const ProbeSpec& p) {
+  if constexpr (D == 2) return p.at;
+  else return Vec3(p.at.x(), p.at.y(), p.at_z);
+}
+
 struct ProbePlan {
   std::vector<ProbeSpec> probes;
   std::vector<std::vector<StressSample>> samples;  // stress probes: the cells that hold the point
@@ -60,12 +67,16 @@ double fraction_downstream(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
 
 // Finds the node of each point probe (nearest in reference coordinates, among the nodes of its body), the
 // nodes of extent probes and the interior edges of pressure_jump probes.
-ProbePlan plan_probes(const SceneSpec& scene, const Nodes<2>& nodes, const std::vector<Cells>& cells,
+// Instantiated for D = 2 and 3 (3D: the kinds the loader allows there, without stress, pressure_jump, walls,
+// remesh and inlets).
+template <int D>
+ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::vector<Cells>& cells,
                       const std::vector<Index>& node_body);
 
+template <int D>
 void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                     const Nodes<2>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad,
-                     const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                     const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
+                     const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                      const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values);
 
 double stress_component(const Mat3& sigma, StressComponent c);

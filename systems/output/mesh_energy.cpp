@@ -4,13 +4,14 @@
 
 namespace loom {
 
-MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes, const std::vector<Cells>& cells,
-                       const std::vector<QuadPoints<2>>& quad, const BoundaryConditions<2>& bc) {
+template <int D>
+MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes, const std::vector<Cells>& cells,
+                       const std::vector<QuadPoints<D>>& quad, const BoundaryConditions<D>& bc) {
   MeshEnergy e;
   if (nodes.v_n.used() && nodes.lumped_mass.used())
     for (Index i = 0; i < nodes.size(); ++i) e.kinetic += 0.5 * nodes.lumped_mass[i] * nodes.v_n[i].squaredNorm();
   for (std::size_t k = 0; k < cells.size(); ++k) {
-    const QuadPoints<2>& q = quad[k];
+    const QuadPoints<D>& q = quad[k];
     for (Index c = 0; c < cells[k].size(); ++c) {
       const BodyMaterial& m = materials[std::size_t(cells[k].body[c])];
       for (int i = 0; i < q.per_cell; ++i) {
@@ -23,8 +24,13 @@ MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<2
   const int pn = bc.per_node;
   if (bc.external.size() > 0)
     for (Index i = 0; i < nodes.size(); ++i)
-      for (int d = 0; d < 2; ++d) e.potential -= bc.external[i * pn + d] * nodes.u_n[i][d];
+      for (int d = 0; d < D; ++d) e.potential -= bc.external[i * pn + d] * nodes.u_n[i][d];
   return e;
 }
+
+template MeshEnergy mesh_energy<2>(const std::vector<BodyMaterial>&, const Nodes<2>&, const std::vector<Cells>&,
+                                   const std::vector<QuadPoints<2>>&, const BoundaryConditions<2>&);
+template MeshEnergy mesh_energy<3>(const std::vector<BodyMaterial>&, const Nodes<3>&, const std::vector<Cells>&,
+                                   const std::vector<QuadPoints<3>>&, const BoundaryConditions<3>&);
 
 }  // namespace loom

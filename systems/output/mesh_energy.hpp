@@ -19,7 +19,8 @@ struct MeshEnergy {
   double kinetic = 0.0, elastic = 0.0, potential = 0.0;
 };
 
-MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes, const std::vector<Cells>& cells,
-                       const std::vector<QuadPoints<2>>& quad, const BoundaryConditions<2>& bc);
+template <int D>
+MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes, const std::vector<Cells>& cells,
+                       const std::vector<QuadPoints<D>>& quad, const BoundaryConditions<D>& bc);
 
 }  // namespace loom

@@ -9,8 +9,9 @@
 
 namespace loom {
 
-void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes,
-                    const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad, Frame& frame) {
+template <int D>
+void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes,
+                    const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad, Frame& frame) {
   frame.step = ctx.step;
   frame.time = ctx.t;
   const Index n = nodes.size();
@@ -26,9 +27,9 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   if (nodes.J_node.used()) nodal_J.values.assign(nodes.J_node.values().begin(), nodes.J_node.values().end());
   if (nodes.v_n.used()) velocity.values.assign(3 * std::size_t(n), 0.0);
   for_each_index(n, [&](Index i) {
-    const Vec2 x = nodes.position_n(i);
-    frame.points[3 * std::size_t(i)] = x.x(), frame.points[3 * std::size_t(i) + 1] = x.y(), frame.points[3 * std::size_t(i) + 2] = 0.0;
-    for (int d = 0; d < 2; ++d) {
+    const Vec<D> x = nodes.position_n(i);
+    for (int d = 0; d < 3; ++d) frame.points[3 * std::size_t(i) + std::size_t(d)] = d < D ? x[d] : 0.0;
+    for (int d = 0; d < D; ++d) {
       displacement.values[3 * std::size_t(i) + std::size_t(d)] = nodes.u_n[i][d];
       if (nodes.v_n.used()) velocity.values[3 * std::size_t(i) + std::size_t(d)] = nodes.v_n[i][d];
     }
@@ -50,7 +51,7 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   Index first = 0;
   for (std::size_t b = 0; b < cells.size(); ++b) {
     const Cells& cb = cells[b];
-    const QuadPoints<2>& qb = quad[b];
+    const QuadPoints<D>& qb = quad[b];
     for (Index c = 0; c < cb.size(); ++c) {
       for (int a = 0; a < cb.stride; ++a) frame.connectivity.push_back(cb.node(c, a));
       frame.offsets.push_back(Index(frame.connectivity.size()));
@@ -74,8 +75,9 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
       pressure.values[k] = p;
       // Seed 001's triangles: the volume ratio of the triangle itself, current over reference area (their F_n is a
       // per-triangle record that a remesh maps from a neighbour, not the triangle's own history).
-      if (integrates_on_domains(cb.formulation) && cb.measure.used() && !nodes.u_n.empty())
-        J_mean = signed_area(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2))) / cb.measure[c];
+      if constexpr (D == 2)
+        if (integrates_on_domains(cb.formulation) && cb.measure.used() && !nodes.u_n.empty())
+          J_mean = signed_area(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2))) / cb.measure[c];
       J.values[k] = J_mean;
       von_mises.values[k] = std::sqrt(1.5 * dev.squaredNorm());
       body.values[k] = cb.body[c];
@@ -91,5 +93,10 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   frame.cell_arrays = {std::move(stress), std::move(pressure), std::move(J), std::move(von_mises), std::move(body)};
   frame.notes = {{"pressure_definition", kPressureDefinition}};
 }
+
+template void snapshot_frame<2>(const StepContext&, const std::vector<BodyMaterial>&, const Nodes<2>&, const std::vector<Cells>&,
+                                const std::vector<QuadPoints<2>>&, Frame&);
+template void snapshot_frame<3>(const StepContext&, const std::vector<BodyMaterial>&, const Nodes<3>&, const std::vector<Cells>&,
+                                const std::vector<QuadPoints<3>>&, Frame&);
 
 }  // namespace loom

@@ -16,7 +16,8 @@
 
 namespace loom {
 
-void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Nodes<2>& nodes,
-                    const std::vector<Cells>& cells, const std::vector<QuadPoints<2>>& quad, Frame& frame);
+template <int D>
+void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes,
+                    const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad, Frame& frame);
 
 }  // namespace loom

@@ -27,7 +27,8 @@ LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Tim
   return LinearSolveStatus::ok;
 }
 
-LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
+template <int D>
+LinearSolveStatus solve_linear_step(const Nodes<D>& nodes, const BoundaryConditions<D>& bc, LinearSolve& solver,
                                     LinearSystem& system, Timers& timers, bool refactorize) {
   if (solve_free_dofs(solver, system, timers, refactorize) != LinearSolveStatus::ok) return LinearSolveStatus::singular;
   const DofMap& dofs = system.dofs;
@@ -45,5 +46,8 @@ LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditi
     system.increment_full[tie.dof] = 0.5 * (system.increment_full[tie.master[0]] + system.increment_full[tie.master[1]]);
   return LinearSolveStatus::ok;
 }
+
+template LinearSolveStatus solve_linear_step<2>(const Nodes<2>&, const BoundaryConditions<2>&, LinearSolve&, LinearSystem&, Timers&, bool);
+template LinearSolveStatus solve_linear_step<3>(const Nodes<3>&, const BoundaryConditions<3>&, LinearSolve&, LinearSystem&, Timers&, bool);
 
 }  // namespace loom

@@ -17,7 +17,8 @@ enum class LinearSolveStatus { ok, singular };
 // refactorize = false reuses the factorisation of the last call (a tangent frozen for the step).
 LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers, bool refactorize = true);
 
-LinearSolveStatus solve_linear_step(const Nodes<2>& nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
+template <int D>
+LinearSolveStatus solve_linear_step(const Nodes<D>& nodes, const BoundaryConditions<D>& bc, LinearSolve& solver,
                                     LinearSystem& system, Timers& timers, bool refactorize = true);
 
 }  // namespace loom

@@ -65,7 +65,8 @@ inline bool cauchy_stress(const Material& material, const Mat3& F, Mat3& sigma) 
 
 // Cauchy stress of quadrature point q: stored at commit by formulations whose materials carry history
 // (stress_n), recomputed from F_n otherwise.
-inline bool point_stress(const BodyMaterial& material, const QuadPoints<2>& quad, Index q, Mat3& sigma) {
+template <int D>
+inline bool point_stress(const BodyMaterial& material, const QuadPoints<D>& quad, Index q, Mat3& sigma) {
   if (quad.stress_n.used()) {
     sigma = quad.stress_n[q];
     return true;
