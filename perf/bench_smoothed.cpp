@@ -76,7 +76,7 @@ struct SmoothedBenchRun : loom::FemModel {
   double residual_ratio = 0.0;  // |r| at the iterate / |r| at the start of the step
 
   SmoothedBenchRun(const std::string& element, int divisions, bool deformed)
-      : FemModel(loom::load_scene_text(scene_text(element, divisions), "perf/cooks_membrane_" + element)) {
+      : loom::FemModel(loom::load_scene_text(scene_text(element, divisions), "perf/cooks_membrane_" + element)) {
     ctx.scene = &scene;
     ctx.step = 1, ctx.dt = scene.time.dt, ctx.t = ctx.dt, ctx.step_end = true;
     loom::apply_boundary_conditions(ctx, nodes, cells, materials, bc);

@@ -70,7 +70,7 @@ inline std::string cooks_membrane_scene(Index n_cells) {
 struct FemBenchRun : FemModel {
   StepContext ctx;
 
-  explicit FemBenchRun(Index n_cells) : FemModel(load_scene_text(cooks_membrane_scene(n_cells), "perf/cooks_membrane")) {
+  explicit FemBenchRun(Index n_cells) : loom::FemModel(load_scene_text(cooks_membrane_scene(n_cells), "perf/cooks_membrane")) {
     ctx.scene = &scene;
     // Step 1 of the static run: loads and targets at t = dt.
     ctx.step = 1, ctx.dt = scene.time.dt, ctx.t = ctx.dt, ctx.step_end = true;

@@ -11,12 +11,52 @@
 
 namespace loom {
 
-Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e) {
+template <int D>
+Index add_expression(BoundaryConditions<D>& bc, const ExpressionSpec& e) {
   std::ostringstream where;
   where << e.where << ": " << e.key;
-  bc.expressions.emplace_back(e.text, where.str());
+  bc.expressions.emplace_back(e.text, where.str(), D);
   return Index(bc.expressions.size() - 1);
 }
+template Index add_expression<2>(BoundaryConditions<2>&, const ExpressionSpec&);
+template Index add_expression<3>(BoundaryConditions<3>&, const ExpressionSpec&);
+
+template <int D>
+void prescribe_displacements(const SceneSpec& scene, std::size_t k, const std::vector<Index>& selected, const std::map<Index, std::array<Index, 2>>& tied,
+                             const Nodes<D>& nodes, PrescribedDofs& seen, BoundaryConditions<D>& bc) {
+  const BoundarySpec& spec = scene.boundaries[k];
+  const int dofs_per_node = bc.per_node;
+  for (int d = 0; d < D; ++d) {
+    const std::optional<ExpressionSpec>& comp = spec.displacement[d];
+    if (!comp) continue;
+    const Index expr = add_expression(bc, *comp);
+    for (Index i : selected) {
+      if (tied.count(i)) continue;  // follows its corners
+      const Index dof = i * dofs_per_node + d;
+      auto it = seen.at.find(dof);
+      if (it == seen.at.end()) {
+        seen.at[dof] = bc.prescribed.size();
+        bc.prescribed.push_back({dof, i, expr});
+        seen.by.push_back(Index(k));
+        bc.boundary_prescribed.back().push_back(Index(bc.prescribed.size() - 1));
+        continue;
+      }
+      const auto& other = bc.prescribed[it->second];
+      const std::string& other_text = bc.expressions[std::size_t(other.expression)].text();
+      std::ostringstream at;
+      for (int c = 0; c < D; ++c) at << (c ? ", " : "") << nodes.X[i][c];
+      LOOM_CHECK(other_text == comp->text, InputError,
+                 comp->where << ": error: " << comp->key << ": node at (" << at.str() << ") is also prescribed by boundary \""
+                             << scene.boundaries[std::size_t(seen.by[it->second])].name << "\" with \""
+                             << other_text << "\"; prescribe it once or with the same expression");
+      bc.boundary_prescribed.back().push_back(Index(it->second));
+    }
+  }
+}
+template void prescribe_displacements<2>(const SceneSpec&, std::size_t, const std::vector<Index>&, const std::map<Index, std::array<Index, 2>>&,
+                                         const Nodes<2>&, PrescribedDofs&, BoundaryConditions<2>&);
+template void prescribe_displacements<3>(const SceneSpec&, std::size_t, const std::vector<Index>&, const std::map<Index, std::array<Index, 2>>&,
+                                         const Nodes<3>&, PrescribedDofs&, BoundaryConditions<3>&);
 
 std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b) {
   if (!a) return b;
@@ -110,8 +150,7 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
   for (const auto& [mid, corner] : tied)
     for (int d = 0; d < 2; ++d) bc.ties.push_back({mid * dofs_per_node + d, {corner[0] * dofs_per_node + d, corner[1] * dofs_per_node + d}});
 
-  std::map<Index, std::size_t> prescribed_at;  // dof -> entry of bc.prescribed
-  std::vector<Index> prescriber;               // boundary that created each entry
+  PrescribedDofs seen;
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
     const BoundarySpec& spec = scene.boundaries[k];
     const auto body = std::size_t(spec.body);
@@ -128,31 +167,7 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     bc.boundary_nodes.push_back(selected);
     bc.boundary_prescribed.emplace_back();
 
-    const std::optional<ExpressionSpec>* comps[2] = {&spec.displacement.x, &spec.displacement.y};
-    for (int d = 0; d < 2; ++d) {
-      if (!*comps[d]) continue;
-      const Index expr = add_expression(bc, **comps[d]);
-      for (Index i : selected) {
-        if (tied.count(i)) continue;  // follows its corners
-        const Index dof = i * dofs_per_node + d;
-        auto it = prescribed_at.find(dof);
-        if (it == prescribed_at.end()) {
-          prescribed_at[dof] = bc.prescribed.size();
-          bc.prescribed.push_back({dof, i, expr});
-          prescriber.push_back(Index(k));
-          bc.boundary_prescribed.back().push_back(Index(bc.prescribed.size() - 1));
-          continue;
-        }
-        const auto& other = bc.prescribed[it->second];
-        const std::string& other_text = bc.expressions[std::size_t(other.expression)].text();
-        LOOM_CHECK(other_text == (*comps[d])->text, InputError,
-                   (*comps[d])->where << ": error: " << (*comps[d])->key << ": node at (" << nodes.X[i].x() << ", "
-                                      << nodes.X[i].y() << ") is also prescribed by boundary \""
-                                      << scene.boundaries[std::size_t(prescriber[it->second])].name << "\" with \""
-                                      << other_text << "\"; prescribe it once or with the same expression");
-        bc.boundary_prescribed.back().push_back(Index(it->second));
-      }
-    }
+    prescribe_displacements(scene, k, selected, tied, nodes, seen, bc);
 
     if (spec.has_traction) {
       // Compiled in every build, so that expression indices (kept by frozen traction edges) stay valid.
@@ -194,18 +209,21 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
   return bc;
 }
 
-std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node) {
+template <int D>
+std::vector<DofKind> dof_kinds(const BoundaryConditions<D>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node) {
   std::vector<DofKind> kinds(std::size_t(n_nodes) * std::size_t(dofs_per_node), DofKind::free);
-  if (dofs_per_node == 3) {
+  if (dofs_per_node == D + 1) {
     // The dilatation (or pressure) is an unknown only at nodes of mixed u-phi (u-p) cells.
-    for (Index i = 0; i < n_nodes; ++i) kinds[std::size_t(3 * i + 2)] = DofKind::absent;
+    for (Index i = 0; i < n_nodes; ++i) kinds[std::size_t((D + 1) * i + D)] = DofKind::absent;
     for (const Cells& cb : cells)
       if (has_dilatation(cb.formulation) || has_pressure(cb.formulation))
-        for (Index k = 0; k < cb.nodes.size(); ++k) kinds[std::size_t(3 * cb.nodes[k] + 2)] = DofKind::free;
+        for (Index k = 0; k < cb.nodes.size(); ++k) kinds[std::size_t((D + 1) * cb.nodes[k] + D)] = DofKind::free;
   }
   for (const auto& p : bc.prescribed) kinds[std::size_t(p.dof)] = DofKind::prescribed;
   for (const auto& t : bc.ties) kinds[std::size_t(t.dof)] = DofKind::tied;
   return kinds;
 }
+template std::vector<DofKind> dof_kinds<2>(const BoundaryConditions<2>&, const std::vector<Cells>&, Index, int);
+template std::vector<DofKind> dof_kinds<3>(const BoundaryConditions<3>&, const std::vector<Cells>&, Index, int);
 
 }  // namespace loom

@@ -4,6 +4,8 @@
 // naming the scene position.
 #pragma once
 
+#include <array>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -30,13 +32,27 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
 
 // Compiles expression `e` into bc.expressions (named by its scene position for error messages); returns
 // its index.
-Index add_expression(BoundaryConditions<2>& bc, const ExpressionSpec& e);
+template <int D>
+Index add_expression(BoundaryConditions<D>& bc, const ExpressionSpec& e);
 // Sum of the global and the per-body body force (both per unit mass): "(a) + (b)", or whichever is given.
 std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, const std::optional<ExpressionSpec>& b);
 
 // Dof kinds of the run: prescribed where a boundary prescribes a displacement component, tied for the
 // ties of `bc`; with three
 // dofs per node the third (phi) is free at nodes of mixed u-phi cells and absent elsewhere.
-std::vector<DofKind> dof_kinds(const BoundaryConditions<2>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node);
+template <int D>
+std::vector<DofKind> dof_kinds(const BoundaryConditions<D>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node);
+
+// The prescribed dofs found so far, and the boundary that prescribed each (for the message when two disagree).
+struct PrescribedDofs {
+  std::map<Index, std::size_t> at;  // dof -> entry of bc.prescribed
+  std::vector<Index> by;            // per entry: the boundary
+};
+// Prescribes the displacement components of boundary k at its selected nodes (not at tied mid-nodes), and
+// records them in bc.boundary_prescribed.back(); a dof prescribed twice must carry the same expression.
+template <int D>
+void prescribe_displacements(const SceneSpec& scene, std::size_t k, const std::vector<Index>& selected,
+                             const std::map<Index, std::array<Index, 2>>& tied, const Nodes<D>& nodes, PrescribedDofs& seen,
+                             BoundaryConditions<D>& bc);
 
 }  // namespace loom

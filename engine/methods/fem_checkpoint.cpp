@@ -14,7 +14,8 @@
 
 namespace loom {
 
-void FemRun::write_checkpoint(int step) {
+template <int D>
+void FemRunT<D>::write_checkpoint(int step) {
   LOOM_ASSERT(step == ctx_.step, "a checkpoint is of the step that just completed");
   writer_.wait();  // the step's frame is in the collection
   ScopedTimer timer(timers_, "checkpoint");
@@ -34,6 +35,7 @@ void FemRun::write_checkpoint(int step) {
   // The integration domains of seed 001's elements: their history b^e_n and geometry in B_n.
   w.value("domain_blocks", Index(m_.edges.size()));
   for (std::size_t k = 0; k < m_.edges.size(); ++k) w.store("domains/" + std::to_string(k), m_.edges[k]);
+  if constexpr (D == 2)
   if (pfem_) {
     for (std::size_t b = 0; b < topology_.triangles.size(); ++b) w.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
     // A particle set that changes (insertion, removal, inflow): its size, the inlets' rows and what renumbering
@@ -59,7 +61,8 @@ void FemRun::write_checkpoint(int step) {
   store_checkpoint(w, options_, step);
 }
 
-CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
+template <int D>
+CheckpointHeader FemRunT<D>::restore_checkpoint(const CheckpointReader& r) {
   const CheckpointHeader h = read_checkpoint_header(r, scene_, options_.log);
   // What the scene built, to check the checkpoint against: fem keeps its mesh, pfem its particles.
   const Index n_nodes = m_.nodes.size();
@@ -102,6 +105,7 @@ CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
     for (Index v : m_.edges[k].stencil.nodes) r.expect(v >= 0 && v < m_.nodes.size(), "has integration domains on nodes it does not hold");
     colour_cells(m_.edges[k].stencil, m_.nodes.size());  // the colour groups are not columns: rebuilt as the builder did
   }
+  if constexpr (D == 2)
   if (pfem_) {
     const Index n_points = r.value<Index>("topology/n_points");
     if (!particles_change()) r.expect_size("particles", std::size_t(n_points), std::size_t(topology_.n_points));
@@ -147,5 +151,10 @@ CheckpointHeader FemRun::restore_checkpoint(const CheckpointReader& r) {
   resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
   return h;
 }
+
+template void FemRunT<2>::write_checkpoint(int);
+template void FemRunT<3>::write_checkpoint(int);
+template CheckpointHeader FemRunT<2>::restore_checkpoint(const CheckpointReader&);
+template CheckpointHeader FemRunT<3>::restore_checkpoint(const CheckpointReader&);
 
 }  // namespace loom

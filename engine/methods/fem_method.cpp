@@ -24,14 +24,16 @@
 
 namespace loom {
 
-FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
+template <int D>
+FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance) {
   ctx_.scene = &scene_;
   resolve_probe_groups();
   check_model();
   if (options_.profile) timers_.enable_profile();
   pfem_ = scene_.scene.method == Method::pfem || scene_.scene.method == Method::es_pfem;
-  if (pfem_) {
+  if constexpr (D == 2)
+    if (pfem_) {
     const PfemSpec& p = scene_.pfem;
     pfem_settings_.remesh = {p.alpha, p.lchar, p.local};
     pfem_settings_.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
@@ -42,14 +44,16 @@ FemRun::FemRun(const SceneSpec& scene, const RunOptions& options)
     topology_ = initial_topology(m_);
     check_inlets();
   }
-  probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
+  probe_plan_ = plan_probes<D>(scene_, m_.nodes, m_.cells, m_.node_body);
   build_graph();
 }
 
-FemRun::~FemRun() = default;
+template <int D>
+FemRunT<D>::~FemRunT() = default;
 
 // A probe given by a physical point of the mesh file reads at that point's node.
-void FemRun::resolve_probe_groups() {
+template <int D>
+void FemRunT<D>::resolve_probe_groups() {
   for (std::size_t k = 0; k < m_.scene.probes.size(); ++k) {
     ProbeSpec& p = m_.scene.probes[k];
     if (p.group.empty()) continue;
@@ -67,13 +71,18 @@ void FemRun::resolve_probe_groups() {
     LOOM_CHECK(region, InputError, os.str() << "no physical group \"" << p.group << "\" in the mesh files (groups: " << (known.empty() ? "none" : known) << ")");
     LOOM_CHECK(region->corners.size() == 1, InputError,
                os.str() << "\"" << p.group << "\" holds " << region->corners.size() << " nodes; a probe reads at one point (a physical point)");
-    p.at = m_.nodes.X[region->corners.front()];
+    const Vec<D> X = m_.nodes.X[region->corners.front()];
+    p.at = X.template head<2>();
+    if constexpr (D == 3) p.at_z = X[2];
   }
 }
 
 // Scene errors that need the mesh and that only a run cares about (tests build models without conditions):
 // a static body free to move, a point probe off every body.
-void FemRun::check_model() const {
+template <int D>
+void FemRunT<D>::check_model() const {
+  if constexpr (D == 3) return;  // 3D: a free body shows as a singular tangent, named by Newton
+  else {
   std::vector<const Cells*> blocks;
   for (const auto& c : m_.cells) blocks.push_back(&c);
   // Walls hold what rests on them through their penalty: a static body on a wall is not free (one that does
@@ -92,10 +101,13 @@ void FemRun::check_model() const {
       }
     }
   check_point_probes_inside(scene_, X, corners, corner_body);
+  }
 }
 
 // An inlet's section must be an edge of its body's initial mesh: the particles on it are the first row released.
-void FemRun::check_inlets() const {
+template <int D>
+void FemRunT<D>::check_inlets() const {
+  if constexpr (D == 2) {
   for (std::size_t k = 0; k < scene_.inlets.size(); ++k) {
     const InletSpec& in = scene_.inlets[k];
     const InletFrame frame = inlet_frame(in, topology_);
@@ -114,9 +126,11 @@ void FemRun::check_inlets() const {
          << "\" (the material would flow in on the side where the body is not)";
     LOOM_CHECK(frame.distance(centre) > 0.0, InputError, side.str());
   }
+  }
 }
 
-void FemRun::build_graph() {
+template <int D>
+void FemRunT<D>::build_graph() {
   graph_ = std::make_unique<StepGraph>(method_name(scene_.scene.method), ctx_, timers_);
   StepGraph& g = *graph_;
   g.name_store(&m_.nodes, "nodes");
@@ -129,6 +143,7 @@ void FemRun::build_graph() {
   g.name_store(&probe_writer_, "probes.csv");
   g.name_store(&writer_, "vtk_writer");
 
+  if constexpr (D == 2)
   if (pfem_) {
     g.name_store(&topology_, "pfem_topology");
     const auto remesh = g.add_node("remesh", {{&m_.materials}, {&topology_, &m_.nodes, &m_.cells, &m_.quad, &m_.edges, &m_.bc, &m_.system}},
@@ -140,7 +155,8 @@ void FemRun::build_graph() {
       return due;
     });
   }
-  g.add_system("apply_boundary_conditions", &apply_boundary_conditions<2>, m_.nodes, m_.cells, m_.materials, m_.bc);
+  g.add_system("apply_boundary_conditions", &apply_boundary_conditions<D>, m_.nodes, m_.cells, m_.materials, m_.bc);
+  if constexpr (D == 2)
   if (!m_.walls.empty()) {
     g.name_store(&m_.walls, "walls");
     g.name_store(&m_.node_body, "node_body");
@@ -148,12 +164,14 @@ void FemRun::build_graph() {
   }
   g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.edges, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
+  if constexpr (D == 2)
   if (!m_.walls.empty()) {
     const auto commit_walls = g.add_system("commit_wall_contact", &commit_wall_contact, m_.walls, m_.node_body, m_.nodes);
     g.run_if(commit_walls, &status_, [this] { return status_.converged; });
   }
-  const auto commit = g.add_system("commit", &commit_step<2>, m_.cells, m_.nodes, m_.quad);
+  const auto commit = g.add_system("commit", &commit_step<D>, m_.cells, m_.nodes, m_.quad);
   g.run_if(commit, &status_, [this] { return status_.converged; });
+  if constexpr (D == 2)
   if (!m_.edges.empty()) {
     g.name_store(&m_.edges, "edges");
     const auto commit_edges = g.add_system("commit_domains", &commit_domains, m_.cells, m_.nodes, m_.quad, m_.edges);
@@ -167,17 +185,21 @@ void FemRun::build_graph() {
   g.build();
 }
 
-void FemRun::remesh_node() {
-  last_remesh_ = remesh_model(pfem_settings_, ctx_.t - ctx_.dt, topology_, m_, timers_);
-  if (last_remesh_.changed) {
-    probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
-    last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
+template <int D>
+void FemRunT<D>::remesh_node() {
+  if constexpr (D == 2) {
+    last_remesh_ = remesh_model(pfem_settings_, ctx_.t - ctx_.dt, topology_, m_, timers_);
+    if (last_remesh_.changed) {
+      probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
+      last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
+    }
   }
 }
 
-void FemRun::newton_node() {
+template <int D>
+void FemRunT<D>::newton_node() {
   reset_iterate(m_.nodes);
-  FemNewtonProblem problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_, &m_.edges);
+  FemNewtonProblemT<D> problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_, &m_.edges);
   problem.set_walls(&m_.walls, &m_.node_body);
   NewtonSettings settings = newton_settings_of(scene_.solver);
   if (options_.verbose && options_.log) {
@@ -202,19 +224,24 @@ void FemRun::newton_node() {
   }
 }
 
-void FemRun::probes_node() {
-  const std::vector<WallResult> walls = m_.walls.empty() ? std::vector<WallResult>{} : wall_results(m_.walls, m_.node_body, m_.nodes, m_.system.dofs);
+template <int D>
+void FemRunT<D>::probes_node() {
+  std::vector<WallResult> walls;
+  if constexpr (D == 2)
+    if (!m_.walls.empty()) walls = wall_results(m_.walls, m_.node_body, m_.nodes, m_.system.dofs);
   evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations,
                   last_remesh_.stats(), walls, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 
-bool FemRun::frame_due() const {
+template <int D>
+bool FemRunT<D>::frame_due() const {
   if (!options_.write_files || scene_.output.every == 0) return false;
   return ctx_.step % scene_.output.every == 0 || ctx_.step == scene_.time.steps;
 }
 
-void FemRun::output_node() {
+template <int D>
+void FemRunT<D>::output_node() {
   last_frame_time_ = ctx_.t;
   auto frame = std::make_shared<Frame>();
   snapshot_frame(ctx_, m_.materials, m_.nodes, m_.cells, m_.quad, *frame);
@@ -228,7 +255,8 @@ void FemRun::output_node() {
   });
 }
 
-void FemRun::describe(std::ostream& os) const {
+template <int D>
+void FemRunT<D>::describe(std::ostream& os) const {
   os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method " << method_name(scene_.scene.method) << ", " << scene_.bodies.size() << (scene_.bodies.size() == 1 ? " body\n" : " bodies\n");
   os << "stores:\n";
   {
@@ -270,10 +298,11 @@ void FemRun::describe(std::ostream& os) const {
 
 // a_0 = M^-1 (f_ext - f_int) with the lumped mass (the residual of the initial assembly is f_int - f_ext at
 // rest): a constant load is then integrated exactly by Newmark and Bossak (free fall: u = g t^2 / 2).
-void FemRun::set_equilibrium_acceleration() {
+template <int D>
+void FemRunT<D>::set_equilibrium_acceleration() {
   const DofMap& dofs = m_.system.dofs;
   for (Index i = 0; i < m_.nodes.size(); ++i)
-    for (int d = 0; d < 2; ++d) {
+    for (int d = 0; d < D; ++d) {
       const Index dof = dofs.dof(i, d);
       const double m = m_.nodes.lumped_mass[i];
       m_.nodes.a_n[i][d] = dofs.kind[std::size_t(dof)] == DofKind::free && m > 0.0 ? -m_.system.residual_full[dof] / m : 0.0;
@@ -281,21 +310,23 @@ void FemRun::set_equilibrium_acceleration() {
   // A tied mid-node (PFEM TRI6) follows its masters, so that the integrator stays linear in the tie.
   for (const Tie& tie : dofs.ties) {
     const int d = tie.dof % dofs.per_node;
-    if (d < 2)
+    if (d < D)
       m_.nodes.a_n[tie.dof / dofs.per_node][d] =
           0.5 * (m_.nodes.a_n[tie.master[0] / dofs.per_node][d] + m_.nodes.a_n[tie.master[1] / dofs.per_node][d]);
   }
 }
 
-void FemRun::write_initial_state() {
+template <int D>
+void FemRunT<D>::write_initial_state() {
   // Step 0: loads at t = 0, one assembly for the reactions, probes and the first frame.
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
   apply_boundary_conditions(ctx_, m_.nodes, m_.cells, m_.materials, m_.bc);
   assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
-  if (!m_.walls.empty()) {
-    measure_contact_areas(ctx_, m_.cells, m_.nodes);
-    add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
-  }
+  if constexpr (D == 2)
+    if (!m_.walls.empty()) {
+      measure_contact_areas(ctx_, m_.cells, m_.nodes);
+      add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
+    }
   if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium) set_equilibrium_acceleration();
   status_ = StepStatus{};
   status_.converged = true;
@@ -303,7 +334,8 @@ void FemRun::write_initial_state() {
   if (options_.write_files && scene_.output.every > 0) output_node();
 }
 
-RunSummary FemRun::run() {
+template <int D>
+RunSummary FemRunT<D>::run() {
   const auto start = std::chrono::steady_clock::now();
   RunSummary summary;
   summary.steps_requested = scene_.time.steps;
@@ -332,5 +364,8 @@ RunSummary FemRun::run() {
   summary.wall_seconds = wall_;
   return summary;
 }
+
+template class FemRunT<2>;
+template class FemRunT<3>;
 
 }  // namespace loom

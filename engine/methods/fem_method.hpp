@@ -33,21 +33,23 @@ namespace loom {
 
 struct CheckpointHeader;
 
-class FemRun final : public MethodRun {
+// D = 2, or 3 (method fem on tetrahedra: no remesh, walls, inlets or smoothing domains).
+template <int D>
+class FemRunT final : public MethodRun {
  public:
-  FemRun(const SceneSpec& scene, const RunOptions& options);
-  ~FemRun() override;
+  FemRunT(const SceneSpec& scene, const RunOptions& options);
+  ~FemRunT() override;
 
   void describe(std::ostream& os) const override;
   RunSummary run() override;
 
   // Read access for tests and tools.
-  const FemModel& model() const { return m_; }
-  const Nodes<2>& nodes() const { return m_.nodes; }
+  const FemModelT<D>& model() const { return m_; }
+  const Nodes<D>& nodes() const { return m_.nodes; }
   const std::vector<Cells>& cells() const { return m_.cells; }
-  const std::vector<QuadPoints<2>>& quad_points() const { return m_.quad; }
+  const std::vector<QuadPoints<D>>& quad_points() const { return m_.quad; }
   const LinearSystem& system() const { return m_.system; }
-  const BoundaryConditions<2>& boundary_conditions() const { return m_.bc; }
+  const BoundaryConditions<D>& boundary_conditions() const { return m_.bc; }
   const std::vector<double>& probe_values() const override { return probe_values_; }
   const RemeshReport& last_remesh() const { return last_remesh_; }
   const StepGraph& graph() const { return *graph_; }
@@ -72,7 +74,7 @@ class FemRun final : public MethodRun {
   bool frame_due() const;
   StopCondition stop_;  // time.stop_when
 
-  FemModel m_;  // the stores
+  FemModelT<D> m_;  // the stores
   const SceneSpec& scene_;
   RunOptions options_;
   StepContext ctx_;
@@ -99,5 +101,9 @@ class FemRun final : public MethodRun {
   double last_frame_time_ = -1.0;
   bool warned_singular_ = false;
 };
+
+using FemRun = FemRunT<2>;
+extern template class FemRunT<2>;
+extern template class FemRunT<3>;
 
 }  // namespace loom

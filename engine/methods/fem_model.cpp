@@ -7,6 +7,7 @@
 #include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/build_domains.hpp"
+#include "engine/methods/build_solid_3d.hpp"
 #include "engine/methods/build_walls.hpp"
 #include "engine/methods/initial_velocity.hpp"
 #include "engine/methods/memory_estimate.hpp"
@@ -37,7 +38,8 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
 
 }  // namespace
 
-FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
+template <int D>
+FemModelT<D>::FemModelT(const SceneSpec& spec) : scene(spec) {
   check_memory(scene);
   // 1. Columns: dynamic integrators need velocities and accelerations, lumped mass its column, mixed
   //    elements the dilatation.
@@ -57,7 +59,8 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.
-  node_body = build_mesh(scene, nodes, cells, &regions);
+  if constexpr (D == 2) node_body = build_mesh(scene, nodes, cells, &regions);
+  else node_body = build_mesh_3d(scene, nodes, cells, &regions);
   materials = body_materials(scene);
   allocate_quad_points(cells, quad);
   if (compute_geometry(nodes, cells, quad) != 0) {
@@ -67,21 +70,26 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
     else where << scene.file << ": error: body mesh";
     throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (size or scale too extreme?)");
   }
-  build_domains(nodes, cells, j_projection, edges);
-  for (auto& e : edges)
-    e.reference_geometry = e.size() > 0 && scene.materials[std::size_t(scene.bodies[std::size_t(e.stencil.body[0])].material)].model ==
-                                                MaterialModel::linear_elastic;
-  set_reference_areas(nodes, cells);
+  if constexpr (D == 2) {
+    build_domains(nodes, cells, j_projection, edges);
+    for (auto& e : edges)
+      e.reference_geometry = e.size() > 0 && scene.materials[std::size_t(scene.bodies[std::size_t(e.stencil.body[0])].material)].model ==
+                                                  MaterialModel::linear_elastic;
+    set_reference_areas(nodes, cells);
+  }
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
-  walls = build_walls(scene, nodes, cells, node_body);
+  if constexpr (D == 2) walls = build_walls(scene, nodes, cells, node_body);
   if (dynamic)
-    for_each_initial_velocity(
-        scene, nodes.size(), [&](Index i) { return node_body[std::size_t(i)]; }, [&](Index i) { return Vec2(nodes.X[i]); },
-        [&](Index i, const Vec2& v) { nodes.v[i] = v, nodes.v_n[i] = v; });
+    for_each_initial_velocity<D>(
+        scene, nodes.size(), [&](Index i) { return node_body[std::size_t(i)]; }, [&](Index i) { return Vec<D>(nodes.X[i]); },
+        [&](Index i, const Vec<D>& v) { nodes.v[i] = v, nodes.v_n[i] = v; });
 
   // 3. Boundary conditions, dof numbering, sparsity and scatter.
-  const int per_node = mixed ? 3 : 2;  // u_x, u_y (, phi)
-  bc = build_boundary_conditions(scene, nodes, cells, node_body, regions, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
+  const int per_node = mixed ? D + 1 : D;  // the displacement components (, phi or p)
+  if constexpr (D == 2)
+    bc = build_boundary_conditions(scene, nodes, cells, node_body, regions, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
+  else
+    bc = build_boundary_conditions_3d(scene, nodes, cells, node_body, regions, per_node);
   system.dofs.build(per_node, dof_kinds(bc, cells, nodes.size(), per_node), bc.ties);
   std::vector<const Cells*> blocks;
   for (const auto& c : cells) blocks.push_back(&c);
@@ -92,7 +100,9 @@ FemModel::FemModel(const SceneSpec& spec) : scene(spec) {
   system.domain_scatter.resize(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) build_scatter(edges[e].stencil, system.dofs, system.pattern, system.domain_scatter[e]);
   system.resize_vectors();
-
 }
+
+template struct FemModelT<2>;
+template struct FemModelT<3>;
 
 }  // namespace loom

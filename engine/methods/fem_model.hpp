@@ -21,25 +21,32 @@
 
 namespace loom {
 
-struct FemModel {
+// D = 2, or 3 for method fem on tetrahedra (then edges and walls stay empty: seed 001's domains and the rigid
+// walls are two-dimensional).
+template <int D>
+struct FemModelT {
   // Throws InputError for scene errors that need the mesh (empty regions, degenerate meshes, ...).
-  explicit FemModel(const SceneSpec& scene);
+  explicit FemModelT(const SceneSpec& scene);
 
   SceneSpec scene;
-  Nodes<2> nodes;
-  Points<2> points;  // not used by mesh-based FEM: no column is allocated
+  Nodes<D> nodes;
+  Points<D> points;  // not used by mesh-based FEM: no column is allocated
   std::vector<Cells> cells;
-  std::vector<QuadPoints<2>> quad;
+  std::vector<QuadPoints<D>> quad;
   std::vector<Edges<2>> edges;   // integration domains of seed 001's formulations (es_*, fem_*), each tied to a cell block
   std::vector<char> j_projection;  // per body: body[].j_projection
   std::vector<BodyMaterial> materials;
-  BoundaryConditions<2> bc;
+  BoundaryConditions<D> bc;
   Walls walls;  // rigid planes with their penalties ([[wall]]); the contact state is in nodes
   LinearSystem system;
   std::vector<Index> node_body;  // owning body of each node
   BodyRegions regions;           // per body: the physical groups of its mesh file (global corner nodes)
-  bool mixed = false;            // some body carries the dilatation phi or the pressure p (three dofs per node)
+  bool mixed = false;            // some body carries the dilatation phi or the pressure p (D + 1 dofs per node)
   LinearSolverKind linear_solver = LinearSolverKind::automatic;  // what the tangent allows
 };
+
+using FemModel = FemModelT<2>;
+extern template struct FemModelT<2>;
+extern template struct FemModelT<3>;
 
 }  // namespace loom

@@ -10,7 +10,9 @@ std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOpti
   switch (scene.scene.method) {
     case Method::fem:
     case Method::pfem:
-    case Method::es_pfem: return std::make_unique<FemRun>(scene, options);
+    case Method::es_pfem:
+      if (scene.scene.dimension == 3) return std::make_unique<FemRunT<3>>(scene, options);
+      return std::make_unique<FemRun>(scene, options);
     case Method::mpm:
     case Method::mpm_fem: return std::make_unique<MpmRun>(scene, options);
     default: break;

@@ -26,11 +26,12 @@ void read_probe(SceneSpec& s, const TableReader& t) {
                {"merged", RemeshQuantity::merged}, {"crossings", RemeshQuantity::crossings}, {"inserted", RemeshQuantity::inserted},
                {"removed", RemeshQuantity::removed}});
   const std::string component = t.string("component");
-  p.component = component == "y" ? 1 : 0;
+  p.component = component == "y" ? 1 : component == "z" ? 2 : 0;
+  if (component == "z" && s.scene.dimension < 3) t.error("component", "component z in a two-dimensional scene (scene.dimension = 2)");
   p.stress = pick<StressComponent>(component, {{"xx", StressComponent::xx}, {"yy", StressComponent::yy}, {"xy", StressComponent::xy},
                                                {"zz", StressComponent::zz}, {"von_mises", StressComponent::von_mises},
                                                {"pressure", StressComponent::pressure}});
-  const bool vector_component = component == "x" || component == "y";
+  const bool vector_component = component == "x" || component == "y" || component == "z";
   if (p.kind == ProbeKind::wall_force && component == "normal") {
     p.component = 2;
   } else if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component) {
@@ -53,7 +54,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
         t.error("boundary", "no [[boundary]] named \"" + bname + "\" (known: " + names_of(s.boundaries) + ")");
       } else if (p.boundary != kNoIndex && t.has("component")) {
         const auto& d = s.boundaries[std::size_t(p.boundary)].displacement;
-        if (!(p.component == 0 ? d.x : d.y))
+        if (!d[p.component])
           t.error("component", "boundary \"" + bname + "\" prescribes no displacement in " + t.string("component") + ": there is no reaction to measure");
       }
       break;
@@ -67,6 +68,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
         t.error("", "missing key at (or group: a physical point of the mesh file), needed by kind = \"" + kind + "\"");
       if (t.has("at") && t.has("group")) t.error("group", "give either at or group, not both");
       p.at = t.vec2("at");
+      p.at_z = t.component("at", 2);
       p.group = t.string("group");
       if (t.has("group") && is_mpm(s.scene.method)) t.error("group", "method mpm starts its tracer points at coordinates: give at");
       if (t.has("body")) {
@@ -97,12 +99,14 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
       break;
     case ProbeKind::angular_momentum:
-      unused("boundary"), unused("component"), unused("body"), unused("group");
+      unused("boundary"), unused("body"), unused("group");
+      if (s.scene.dimension < 3) unused("component");  // 2D: the one out-of-plane moment
       if (s.time.integrator == Integrator::static_) t.error("kind", "kind = \"angular_momentum\" reads velocities: it needs a dynamic time.integrator");
       if (s.scene.method == Method::mpm_fem) t.error("kind", "kind = \"angular_momentum\" is implemented for methods fem, pfem, es_pfem and mpm");
       if (!is_mpm(s.scene.method) && s.time.mass == MassKind::consistent)
         t.error("kind", "kind = \"angular_momentum\" sums the lumped nodal masses: use time.mass = \"lumped\"");
       p.at = t.has("at") ? t.vec2("at") : Vec2::Zero();  // the point the moments are taken about
+      p.at_z = t.component("at", 2);
       break;
     case ProbeKind::remesh:
       needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "engine/core/errors.hpp"
+#include "engine/scene/dimension_options.hpp"
 #include "engine/scene/expression.hpp"
 #include "engine/scene/mesh_options.hpp"
 #include "engine/scene/method_checks.hpp"
@@ -35,19 +36,20 @@ std::string hash_text(const std::string& text) {
   return os.str();
 }
 
-void check_expression(const std::optional<ExpressionSpec>& e, Diagnostics& diag) {
+void check_expression(const std::optional<ExpressionSpec>& e, Diagnostics& diag, int dimension) {
   if (!e) return;
-  const std::string err = Expression::compile_error(e->text, 2);  // scene.dimension is 2 (the schema allows no other yet)
+  const std::string err = Expression::compile_error(e->text, dimension);
   if (!err.empty()) diag.error(e->where, e->key, "invalid expression \"" + e->text + "\": " + err);
 }
 
-VectorExpression read_vector(const TableReader& t, Diagnostics& diag) {
+VectorExpression read_vector(const TableReader& t, Diagnostics& diag, int dimension) {
   VectorExpression v;
   if (!t.present()) return v;
   v.x = t.expression("x");
   v.y = t.expression("y");
-  check_expression(v.x, diag);
-  check_expression(v.y, diag);
+  v.z = t.expression("z");
+  if (dimension < 3 && v.z) t.error("z", "a z component in a two-dimensional scene (scene.dimension = 2)");
+  for (int d = 0; d < 3; ++d) check_expression(v[d], diag, dimension);
   return v;
 }
 
@@ -66,7 +68,7 @@ class Loader {
     for (const auto& b : root_.array("boundary")) read_boundary(s, b);
     for (const auto& w : root_.array("wall")) read_wall(s, w);
     for (const auto& i : root_.array("inlet")) read_inlet(s, i);
-    s.body_force = read_vector(root_.table("body_force"), diag_);
+    s.body_force = read_vector(root_.table("body_force"), diag_, s.scene.dimension);
     for (const auto& p : root_.array("probe")) read_probe(s, p);
     read_stop_when(s);
     read_adaptive_dt(s);
@@ -77,6 +79,7 @@ class Loader {
     read_output(s);
     check_mass(s);
     check_method_support(s, root_, diag_);
+    check_dimension_support(s, root_);
     read_mpm_options(s, root_);
     return s;
   }
@@ -227,10 +230,13 @@ class Loader {
     b.material = find_by_name(s.materials, mat);
     if (t.has("material") && b.material == kNoIndex)
       t.error("material", "no [[material]] named \"" + mat + "\" (known: " + names_of(s.materials) + ")");
-    b.element = pick<Formulation>(t.string("element"), {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi},
-                                                        {"p1p1_up", Formulation::p1p1_up}, {"es_up", Formulation::es_up},
-                                                        {"es_u", Formulation::es_u}, {"fem_up", Formulation::fem_up}, {"fem_u", Formulation::fem_u},
-                                                        {"quad9", Formulation::quad9}});
+    // tet10 is tri6's counterpart: the quadratic isoparametric displacement formulation, on tetrahedra.
+    const std::string element = t.string("element");
+    b.element = pick<Formulation>(element, {{"p1", Formulation::p1}, {"tri6", Formulation::tri6}, {"p1p1_uphi", Formulation::p1p1_uphi},
+                                            {"p1p1_up", Formulation::p1p1_up}, {"es_up", Formulation::es_up},
+                                            {"es_u", Formulation::es_u}, {"fem_up", Formulation::fem_up}, {"fem_u", Formulation::fem_u},
+                                            {"quad9", Formulation::quad9}, {"tet10", Formulation::tri6}});
+    check_element_dimension(s.scene.dimension, element, t);
     read_mpm_body(s, t, b);
     read_smoothed_body(s, t, b);
     if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&
@@ -253,13 +259,14 @@ class Loader {
     }
     read_particle_generator(t, b);
     if (b.particles.kind == ParticleGenerator::none) read_mesh(t.table("mesh"), b.mesh);
+    read_mesh_dimension(s.scene.dimension, t.table("mesh"), b.mesh);
     if (b.element == Formulation::quad9) check_quad9_body(s, t, b);
     const std::string inertia = t.string("inertia");
     b.unit_inertia = inertia == "unit_density";
     if (t.has("inertia") && !(s.scene.method == Method::mpm_fem && b.element == Formulation::quad9))
       t.error("inertia", "inertia chooses the density of an FEM body's inertia in method mpm_fem (element = \"quad9\")");
-    b.body_force = read_vector(t.table("body_force"), diag_);
-    b.initial_velocity = read_vector(t.table("initial_velocity"), diag_);
+    b.body_force = read_vector(t.table("body_force"), diag_, s.scene.dimension);
+    b.initial_velocity = read_vector(t.table("initial_velocity"), diag_, s.scene.dimension);
     if (t.has("initial_velocity") && s.time.integrator == Integrator::static_)
       t.error("initial_velocity", "an initial velocity needs a dynamic time.integrator (euler_backward, newmark or bossak); the scene is static");
     warn_if_locking(s, t, b);
@@ -308,15 +315,19 @@ class Loader {
     b.box_min = box[0], b.box_max = box[1];
     if (region.has("box") && (box[0].x() > box[1].x() || box[0].y() > box[1].y()))
       region.error("box", "the first corner must be the lower-left one ([[xmin, ymin], [xmax, ymax]])");
-    b.displacement = read_vector(t.table("displacement"), diag_);
+    if (s.scene.dimension == 3) {
+      b.box_min_z = region.box_component("box", 0, 2), b.box_max_z = region.box_component("box", 1, 2);
+      if (region.has("box") && b.box_min_z > b.box_max_z) region.error("box", "the first corner must be the lowest one ([[xmin, ymin, zmin], [xmax, ymax, zmax]])");
+    }
+    b.displacement = read_vector(t.table("displacement"), diag_, s.scene.dimension);
     b.pressure = t.expression("pressure");
-    check_expression(b.pressure, diag_);
+    check_expression(b.pressure, diag_, s.scene.dimension);
     const auto traction = t.table("traction");
     b.has_traction = traction.present();
-    b.traction = read_vector(traction, diag_);
+    b.traction = read_vector(traction, diag_, s.scene.dimension);
     b.outside = t.boolean("outside");
-    if (t.table("displacement").present() && !b.displacement.x && !b.displacement.y)
-      t.error("displacement", "give at least one component (x or y)");
+    if (t.table("displacement").present() && !b.displacement.any())
+      t.error("displacement", s.scene.dimension == 3 ? "give at least one component (x, y or z)" : "give at least one component (x or y)");
     s.boundaries.push_back(b);
   }
 
@@ -330,7 +341,7 @@ class Loader {
 
   // Inertia and body forces act through the density: a zero density would silently drop them.
   void check_mass(const SceneSpec& s) {
-    const bool global_force = s.body_force.x || s.body_force.y;
+    const bool global_force = s.body_force.any();
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
       const auto& body = s.bodies[b];
       if (body.material == kNoIndex) continue;
@@ -339,7 +350,7 @@ class Loader {
       if (s.time.integrator != Integrator::static_)
         diag_.error(mat.where, "material[" + std::to_string(body.material) + "].density",
                     "density must be > 0 for the dynamic integrator (used by body \"" + body.name + "\")");
-      else if (global_force || body.body_force.x || body.body_force.y)
+      else if (global_force || body.body_force.any())
         diag_.error(mat.where, "material[" + std::to_string(body.material) + "].density",
                     "density must be > 0: a body force acts on body \"" + body.name + "\"");
     }

@@ -31,7 +31,7 @@ enum class EnergyPart { kinetic, elastic, total, potential, mechanical };
 enum class MassKind { lumped, consistent };
 enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
 enum class TangentUpdate { every_iteration, once_per_step };
-enum class MeshGenerator { rectangle, cooks_membrane, file };
+enum class MeshGenerator { rectangle, cooks_membrane, file, box };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
                        angular_momentum };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
@@ -113,10 +113,17 @@ struct MeshSpec {
   std::string key;      // display key of the table, e.g. body[0].mesh
   SourceRef where;
   SourceRef file_where;
+  // 3D: the z parts of the box generator, and the extrusion of a 2D generator's mesh (depth > 0).
+  double origin_z = 0.0, size_z = 1.0;
+  int nz = 1;
+  double depth = 0.0;
+  int layers = 1;
 };
 
 struct VectorExpression {
-  std::optional<ExpressionSpec> x, y;  // a component left out is absent (free / zero)
+  std::optional<ExpressionSpec> x, y, z;  // a component left out is absent (free / zero); z in 3D scenes only
+  const std::optional<ExpressionSpec>& operator[](int d) const { return d == 0 ? x : d == 1 ? y : z; }
+  bool any() const { return x || y || z; }
 };
 
 // Particles of seed 004's appendix, generated without a body mesh: a disk (uniform core + boundary layers)
@@ -170,6 +177,7 @@ struct BoundarySpec {
   std::string name;
   Index body = 0;
   Vec2 box_min = Vec2::Zero(), box_max = Vec2::Zero();
+  double box_min_z = 0.0, box_max_z = 0.0;  // 3D
   std::string group;  // instead of the box: a physical group of the body's mesh file
   SourceRef region_where;
   VectorExpression displacement;

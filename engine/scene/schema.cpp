@@ -9,7 +9,7 @@ namespace loom {
 namespace {
 
 std::vector<KeySpec> build_schema() {
-  const std::string expr = " A number or a muparser expression in t (time), x, y (reference coordinates).";
+  const std::string expr = " A number or a muparser expression in t (time), x, y (and z in 3D: reference coordinates).";
   std::vector<KeySpec> s;
   // [scene]
   s.push_back(key("scene", K::table, "What the scene is and which method runs it. Papers are cited by short keys ([Schewe 2024], "
@@ -21,7 +21,10 @@ std::vector<KeySpec> build_schema() {
                   "mpm.scheme = \"particle_newmark\", [Aulisa 2019]'s implicit MPM); mpm_fem: that MPM on a quad9 grid coupled "
                   "monolithically to FEM bodies whose quad9 cells share the grid's nodes ([Aulisa 2019] §4).")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
-  s.push_back(key("scene.dimension", K::integer, "Spatial dimension (2: plane strain).").by_default("2").at_least(2).at_most(2));
+  s.push_back(key("scene.dimension", K::integer,
+                      "Spatial dimension: 2 (plane strain) or 3 (method fem with elements p1 = linear tetrahedron, tet10, p1p1_uphi = "
+                      "mixed linear tetrahedron; every vector and box corner then takes 3 numbers, expressions may use z).")
+                      .by_default("2").at_least(2).at_most(3));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
   s.push_back(key("scene.description", K::string, "Free text.").by_default("\"\""));
   // [time]
@@ -106,8 +109,10 @@ std::vector<KeySpec> build_schema() {
                   "quad9 (method fem): biquadratic displacement quadrilateral, 3 x 3 Gauss points ([Aulisa 2019] §2.2), on the "
                   "quadrilaterals of a generated mesh (rectangle, cooks_membrane; no pattern); method mpm_fem: an FEM body, a rectangle "
                   "of quad9 cells (total Lagrangian, Newmark with consistent mass) outside the grid and sharing the grid's nodes along "
-                  "a common side; it is refined grid.refinements times like the grid.")
-                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u", "quad9"}).by_default("p1"));
+                  "a common side; it is refined grid.refinements times like the grid. 3D (method fem): p1 is the linear tetrahedron "
+                  "(one point), tet10 the quadratic one (four points, VTK_QUADRATIC_TETRA order), p1p1_uphi the mixed linear "
+                  "tetrahedron (N-check = 1/4, four points).")
+                  .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u", "quad9", "tet10"}).by_default("p1"));
   s.push_back(key("body[].alpha_stab", K::real,
                   "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "
                   "([Reinold 2021] eq 48); 0: the unstabilised u-p element (ES-FEM-UP); the paper uses 0.5 (Cook's membrane) and 200 "
@@ -154,13 +159,20 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].particles.core_height", K::real, "beam: height H_0 < H of the uniform core.").above(0));
   s.push_back(key("body[].particles.n_height", K::integer, "beam: particles across the core, N_H.").at_least(2));
   s.push_back(key("body[].particles.factor", K::real, "Each boundary layer is thinner than the one inside it by this factor (> 1).").above(1));
-  s.push_back(key("body[].mesh.generator", K::choice, "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)); give a generator or a file.")
-                  .one_of({"rectangle", "cooks_membrane"}).require_unless("file"));
+  s.push_back(key("body[].mesh.generator", K::choice,
+                  "rectangle, or cooks_membrane (corners (0,0), (48,44), (48,60), (0,44)); give a generator or a file. 3D: box (origin, "
+                  "size, divisions: a lattice of hexahedra each cut into six Kuhn tetrahedra), or rectangle and cooks_membrane "
+                  "extruded along z over depth in divisions[2] layers (each prism cut into three tetrahedra, diagonals consistent between neighbours).")
+                  .one_of({"rectangle", "cooks_membrane", "box"}).require_unless("file"));
+  s.push_back(key("body[].mesh.depth", K::real,
+                  "3D: extrude the 2D generator's mesh from z = 0 to z = depth in divisions[2] layers (required with rectangle and "
+                  "cooks_membrane in 3D).").above(0));
   s.push_back(key("body[].mesh.file", K::string,
-                  "A mesh written by gmsh (.msh, format 4.1 or 2.2, ASCII or binary) of 3- or 6-node triangles in the plane z = 0, relative to "
+                  "A mesh written by gmsh (.msh, format 4.1 or 2.2, ASCII or binary) of 3- or 6-node triangles in the plane z = 0 (3D: 4- or "
+                  "10-node tetrahedra), relative to "
                   "the scene file (to the working directory when given with --set). 6-node triangles keep their mid-nodes (curved "
                   "edges). Its physical groups become regions that [[boundary]] (region.group) and probes (group) select."));
-  s.push_back(key("body[].mesh.group", K::string, "With file: the physical surface that is this body (default: every triangle of the file)."));
+  s.push_back(key("body[].mesh.group", K::string, "With file: the physical surface (3D: volume) that is this body (default: every cell of the file)."));
   s.push_back(key("body[].mesh.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
   s.push_back(key("body[].mesh.size", K::vec2, "Width and height (rectangle; required there)."));
   s.push_back(key("body[].mesh.divisions", K::ivec2, "Element edges along x and y (cooks_membrane: along the clamped-to-loaded direction and across).").require_unless("file"));
@@ -172,11 +184,13 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body[].body_force", K::table, "Body force per unit mass on this body (added to the global [body_force])."));
   s.push_back(key("body[].body_force.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("body[].body_force.y", K::expression, "y component." + expr).by_default("0"));
+  s.push_back(key("body[].body_force.z", K::expression, "z component (3D)." + expr).by_default("0"));
   s.push_back(key("body[].initial_velocity", K::table,
                   "The body's velocity at t = 0, a field in the reference position (dynamic integrators only: the nodes of "
                   "fem, pfem and es_pfem bodies, the particles of an mpm body, the nodes of an mpm_fem FEM body)."));
   s.push_back(key("body[].initial_velocity.x", K::expression, "x component, in x and y (t = 0), e.g. \"-0.5 * y\" for a rotation.").by_default("0"));
   s.push_back(key("body[].initial_velocity.y", K::expression, "y component, in x and y (t = 0).").by_default("0"));
+  s.push_back(key("body[].initial_velocity.z", K::expression, "z component (3D), in x, y and z (t = 0).").by_default("0"));
   // [grid]
   s.push_back(key("grid", K::table,
                   "Method mpm: the background grid ([Moreno et al.] §3), fixed triangles or squares that need not conform to the body and "
@@ -232,7 +246,7 @@ std::vector<KeySpec> build_schema() {
                   "Region: nodes inside the box (or of the group), and boundary edges with both end nodes inside. Method mpm: a "
                   "displacement or pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges in the box "
                   "(carried by traction points that move with the body).").require());
-  s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (bounds included, to 1e-9 of the body size)."));
+  s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (3D: [[xmin, ymin, zmin], [xmax, ymax, zmax]]; bounds included, to 1e-9 of the body size). 3D: the region's boundary faces are those with every corner inside."));
   s.push_back(key("boundary[].region.group", K::string,
                   "Instead of box: a physical group of the body's mesh file (a curve, a point or a surface); its nodes, and the mid-node "
                   "of every edge whose two corners are in it."));
@@ -241,9 +255,11 @@ std::vector<KeySpec> build_schema() {
                   "grid nodes by g(t_n+1) - g(t_n), so g must vanish at t = 0 (the particles start undisplaced)."));
   s.push_back(key("boundary[].displacement.x", K::expression, "Prescribed u_x." + expr));
   s.push_back(key("boundary[].displacement.y", K::expression, "Prescribed u_y." + expr));
+  s.push_back(key("boundary[].displacement.z", K::expression, "Prescribed u_z (3D)." + expr));
   s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges ([Schewe 2024] eq 8)."));
   s.push_back(key("boundary[].traction.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("boundary[].traction.y", K::expression, "y component." + expr).by_default("0"));
+  s.push_back(key("boundary[].traction.z", K::expression, "z component (3D; per unit reference area on the region's boundary faces)." + expr).by_default("0"));
   s.push_back(key("boundary[].outside", K::boolean,
                   "Method mpm, mpm.soft_stiffness: the region's grid nodes count as outside the body in the flags M_E (the authors' code "
                   "marks every outer boundary of the disk grids this way, not the beam's clamped wall).").by_default("false"));
@@ -254,6 +270,7 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("body_force", K::table, "Body force per unit mass on every body (gravity: y = -9.81); needs density > 0."));
   s.push_back(key("body_force.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("body_force.y", K::expression, "y component." + expr).by_default("0"));
+  s.push_back(key("body_force.z", K::expression, "z component (3D)." + expr).by_default("0"));
   // [[probe]]
   s.push_back(key("probe", K::table_array, "Quantities written to probes.csv every step."));
   s.push_back(key("probe[].name", K::string, "Column name in probes.csv.").require());
@@ -285,8 +302,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));
   s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y), of a wall_force probe (x, y, normal), or of a stress probe.")
-                  .one_of({"x", "y", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), or of a stress probe.")
+                  .one_of({"x", "y", "z", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe; of an angular_momentum probe, the point the moments are taken about (default the origin)."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
@@ -324,9 +341,9 @@ const char* value_kind_name(ValueKind k) {
     case K::integer: return "integer";
     case K::boolean: return "boolean";
     case K::expression: return "number or expression string";
-    case K::vec2: return "array of 2 numbers";
-    case K::ivec2: return "array of 2 integers";
-    case K::box: return "array of 2 arrays of 2 numbers";
+    case K::vec2: return "array of 2 numbers (3 in 3D)";
+    case K::ivec2: return "array of 2 integers (3 in 3D)";
+    case K::box: return "array of 2 arrays of 2 numbers (3 in 3D)";
   }
   return "?";
 }

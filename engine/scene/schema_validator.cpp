@@ -83,9 +83,10 @@ bool is_number(const toml::node& n) { return n.is_integer() || n.is_floating_poi
 double number_of(const toml::node& n) {
   return n.is_integer() ? double(n.as_integer()->get()) : n.as_floating_point()->get();
 }
-bool is_number_pair(const toml::node& n, bool integers) {
+// An array of `size` numbers (integers): a point or a count per axis, size = scene.dimension.
+bool is_number_pair(const toml::node& n, bool integers, std::size_t size) {
   const auto* a = n.as_array();
-  if (!a || a->size() != 2) return false;
+  if (!a || a->size() != size) return false;
   for (const auto& e : *a)
     if (integers ? !e.is_integer() : !is_number(e)) return false;
   return true;
@@ -93,7 +94,7 @@ bool is_number_pair(const toml::node& n, bool integers) {
 
 class Validator {
  public:
-  Validator(const std::string& file, Diagnostics& diag) : file_(file), diag_(diag) {}
+  Validator(const std::string& file, Diagnostics& diag, int dimension) : file_(file), diag_(diag), dimension_(dimension) {}
 
   void table(const toml::table& t, const std::string& schema, const std::string& display) {
     for (auto&& [k, node] : t) {
@@ -131,7 +132,15 @@ class Validator {
   }
 
   void wrong_type(const toml::node& n, const KeySpec& spec, const std::string& display) {
-    diag_.error(source_of(n, file_), display, std::string("expected ") + value_kind_name(spec.kind) + ", got " + describe(n));
+    std::string expected = value_kind_name(spec.kind);
+    if (spec.kind == ValueKind::vec2 || spec.kind == ValueKind::ivec2 || spec.kind == ValueKind::box) {
+      const std::string d = std::to_string(dimension_);
+      expected = spec.kind == ValueKind::vec2    ? "array of " + d + " numbers"
+                 : spec.kind == ValueKind::ivec2 ? "array of " + d + " integers"
+                                                 : "array of 2 arrays of " + d + " numbers";
+      expected += " (scene.dimension = " + d + ")";
+    }
+    diag_.error(source_of(n, file_), display, "expected " + expected + ", got " + describe(n));
   }
 
   // TOML has nan and inf literals, and integers beyond the int the loader reads them into.
@@ -206,15 +215,16 @@ class Validator {
         if (!n.is_string() && !is_number(n)) wrong_type(n, spec, display);
         return;
       case ValueKind::vec2:
-        if (!is_number_pair(n, false)) return wrong_type(n, spec, display);
+        if (!is_number_pair(n, false, std::size_t(dimension_))) return wrong_type(n, spec, display);
         return finite_elements(n, spec, display);
       case ValueKind::ivec2:
-        if (!is_number_pair(n, true)) return wrong_type(n, spec, display);
+        if (!is_number_pair(n, true, std::size_t(dimension_))) return wrong_type(n, spec, display);
         for (const auto& e : *n.as_array()) range(e, number_of(e), spec, display);
         return;
       case ValueKind::box: {
         const auto* a = n.as_array();
-        if (!a || a->size() != 2 || !is_number_pair((*a)[0], false) || !is_number_pair((*a)[1], false))
+        const auto D = std::size_t(dimension_);
+        if (!a || a->size() != 2 || !is_number_pair((*a)[0], false, D) || !is_number_pair((*a)[1], false, D))
           return wrong_type(n, spec, display);
         return finite_elements(n, spec, display);
       }
@@ -223,6 +233,7 @@ class Validator {
 
   const std::string& file_;
   Diagnostics& diag_;
+  int dimension_;  // vectors and boxes have this many numbers
 };
 
 }  // namespace
@@ -234,7 +245,11 @@ SourceRef source_of(const toml::node& node, const std::string& file) {
 }
 
 void validate_against_schema(const toml::table& root, const std::string& file, Diagnostics& diag) {
-  Validator(file, diag).table(root, "", "");
+  // The dimension decides how many numbers a vector takes; an invalid one is reported by its own key (and
+  // vectors are then checked as 2D).
+  const auto* d = root["scene"]["dimension"].as_integer();
+  const int dimension = d && d->get() == 3 ? 3 : 2;
+  Validator(file, diag, dimension).table(root, "", "");
 }
 
 }  // namespace loom

@@ -89,7 +89,7 @@ bool TableReader::boolean(const std::string& key) const {
 Vec2 TableReader::vec2(const std::string& key) const {
   const toml::node* n = node(key);
   toml::table fallback;
-  if (!n || !n->is_array() || n->as_array()->size() != 2) {
+  if (!n || !n->is_array() || n->as_array()->size() < 2) {  // 3D vectors: their x and y
     const std::string& d = default_text(key);
     if (d.empty()) return Vec2::Zero();
     fallback = parse_default(d);
@@ -101,7 +101,7 @@ Vec2 TableReader::vec2(const std::string& key) const {
 
 std::array<long long, 2> TableReader::ivec2(const std::string& key) const {
   const toml::node* n = node(key);
-  if (n && n->is_array() && n->as_array()->size() == 2 && (*n->as_array())[0].is_integer() && (*n->as_array())[1].is_integer())
+  if (n && n->is_array() && n->as_array()->size() >= 2 && (*n->as_array())[0].is_integer() && (*n->as_array())[1].is_integer())
     return {(*n->as_array())[0].as_integer()->get(), (*n->as_array())[1].as_integer()->get()};
   return {1, 1};
 }
@@ -112,10 +112,31 @@ std::array<Vec2, 2> TableReader::box(const std::string& key) const {
   if (!n || !n->is_array() || n->as_array()->size() != 2) return b;
   for (std::size_t i = 0; i < 2; ++i) {
     const auto* corner = (*n->as_array())[i].as_array();
-    if (!corner || corner->size() != 2) return b;
+    if (!corner || corner->size() < 2) return b;
     b[i] = Vec2(as_number(&(*corner)[0]).value_or(0.0), as_number(&(*corner)[1]).value_or(0.0));
   }
   return b;
+}
+
+double TableReader::component(const std::string& key, int i) const {
+  const toml::node* n = node(key);
+  toml::table fallback;
+  if (!n || !n->is_array() || int(n->as_array()->size()) <= i) {
+    const std::string& d = default_text(key);
+    if (d.empty()) return 0.0;
+    fallback = parse_default(d);
+    n = fallback.get("v");
+    if (!n || !n->is_array() || int(n->as_array()->size()) <= i) return 0.0;
+  }
+  return as_number(&(*n->as_array())[std::size_t(i)]).value_or(0.0);
+}
+
+double TableReader::box_component(const std::string& key, int corner, int i) const {
+  const toml::node* n = node(key);
+  if (!n || !n->is_array() || n->as_array()->size() != 2) return 0.0;
+  const auto* c = (*n->as_array())[std::size_t(corner)].as_array();
+  if (!c || int(c->size()) <= i) return 0.0;
+  return as_number(&(*c)[std::size_t(i)]).value_or(0.0);
 }
 
 std::optional<ExpressionSpec> TableReader::expression(const std::string& key) const {

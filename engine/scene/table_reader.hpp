@@ -32,6 +32,9 @@ class TableReader {
   Vec2 vec2(const std::string& key) const;
   std::array<long long, 2> ivec2(const std::string& key) const;
   std::array<Vec2, 2> box(const std::string& key) const;
+  // The i-th number of a vector value (its default's when absent), of corner `corner` of a box value.
+  double component(const std::string& key, int i) const;
+  double box_component(const std::string& key, int corner, int i) const;
   std::optional<ExpressionSpec> expression(const std::string& key) const;
 
   TableReader table(const std::string& key) const;          // absent table: present() == false

@@ -110,7 +110,7 @@ TEST(MalformedScenes, EveryErrorIsReportedAtOnceInFileOrder) {
   TempDir dir("malformed_many");
   std::string text = read_text(kBase);
   for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
-           {"dt = 1.0", "dt = 0.0"}, {"nu = 0.3", "nu = 0.7"}, {"component = \"y\"", "component = \"z\""}}) {
+           {"dt = 1.0", "dt = 0.0"}, {"nu = 0.3", "nu = 0.7"}, {"component = \"y\"", "component = \"w\""}}) {
     ASSERT_NE(text.find(from), std::string::npos);
     text.replace(text.find(from), from.size(), to);
   }
@@ -119,7 +119,7 @@ TEST(MalformedScenes, EveryErrorIsReportedAtOnceInFileOrder) {
   const Command c = run_loom({"check", file});
   EXPECT_EQ(c.exit_code, 2);
   const auto dt = c.err.find(file + ":10:6: error: time.dt: must be > 0"), nu = c.err.find(file + ":20:6: error: material[0].nu:"),
-             comp = c.err.find(file + ":41:13: error: probe[0].component: \"z\" is not one of: x, y");
+             comp = c.err.find(file + ":41:13: error: probe[0].component: \"w\" is not one of: x, y, z");
   ASSERT_NE(dt, std::string::npos) << c.err;
   ASSERT_NE(nu, std::string::npos) << c.err;
   ASSERT_NE(comp, std::string::npos) << c.err;

@@ -17,13 +17,16 @@ SceneSpec scene_from_text(const std::string& text, const std::vector<std::string
   return load_scene_text(text, "test.toml", overrides);
 }
 
-std::unique_ptr<FemRun> make_fem_run(const SceneSpec& scene, const std::string& out) {
+template <int D>
+std::unique_ptr<FemRunT<D>> make_fem_run(const SceneSpec& scene, const std::string& out) {
   RunOptions options;
   options.output_directory = out;
   options.write_files = !out.empty();
   options.progress = false;
-  return std::make_unique<FemRun>(scene, options);
+  return std::make_unique<FemRunT<D>>(scene, options);
 }
+template std::unique_ptr<FemRunT<2>> make_fem_run<2>(const SceneSpec&, const std::string&);
+template std::unique_ptr<FemRunT<3>> make_fem_run<3>(const SceneSpec&, const std::string&);
 
 std::unique_ptr<MpmRun> make_mpm_run(const SceneSpec& scene, const std::string& out) {
   RunOptions options;

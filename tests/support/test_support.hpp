@@ -15,7 +15,8 @@ namespace loom::testing {
 SceneSpec scene_from_text(const std::string& text, const std::vector<std::string>& overrides = {});
 
 // Builds an FemRun that writes no files (output_directory empty) unless `out` is given.
-std::unique_ptr<FemRun> make_fem_run(const SceneSpec& scene, const std::string& out = "");
+template <int D = 2>
+std::unique_ptr<FemRunT<D>> make_fem_run(const SceneSpec& scene, const std::string& out = "");
 // Same for an MpmRun (method mpm).
 std::unique_ptr<MpmRun> make_mpm_run(const SceneSpec& scene, const std::string& out = "");
 

@@ -1,0 +1,64 @@
+#include "engine/scene/dimension_options.hpp"
+
+namespace loom {
+
+void check_element_dimension(int dimension, const std::string& element, const TableReader& body) {
+  if (dimension == 2 && element == "tet10")
+    body.error("element", "tet10 is a tetrahedron: it needs scene.dimension = 3 (the quadratic triangle is tri6)");
+  if (dimension == 3 && element != "p1" && element != "tet10" && element != "p1p1_uphi")
+    body.error("element", "element " + element + " is two-dimensional; in 3D (scene.dimension = 3) the elements are p1 (linear "
+                          "tetrahedron), tet10 (quadratic tetrahedron) and p1p1_uphi (mixed linear tetrahedron)" +
+                          (element == "tri6" ? std::string(": tri6's counterpart is tet10") : std::string()));
+}
+
+void read_mesh_dimension(int dimension, const TableReader& mesh, MeshSpec& m) {
+  if (!mesh.present()) return;
+  const bool box = mesh.string("generator") == "box";
+  if (dimension == 2) {
+    if (box) mesh.error("generator", "box is a 3D generator (scene.dimension = 3); in 2D use rectangle");
+    if (mesh.has("depth")) mesh.error("depth", "depth extrudes a mesh into 3D: it needs scene.dimension = 3");
+    return;
+  }
+  if (m.generator == MeshGenerator::file) return;  // tetrahedra from the file (read_mesh refused the generators' keys)
+  if (box) {
+    m.generator = MeshGenerator::box;
+    m.origin_z = mesh.component("origin", 2);
+    m.size_z = mesh.component("size", 2);
+    if (mesh.has("size") && !(m.size_z > 0)) mesh.error("size", "the box's size must be > 0 along x, y and z");
+    m.nz = int(mesh.component("divisions", 2));
+    if (mesh.has("divisions") && m.nz < 1) mesh.error("divisions", "divisions must be >= 1");
+    if (mesh.has("divisions") && double(m.nx) * m.ny * m.nz * 6 > 5e7) mesh.error("divisions", "more than 5e7 tetrahedra requested");
+    for (const char* k : {"depth", "pattern"})
+      if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"box\" (its cells are Kuhn tetrahedra of a hexahedral lattice)");
+    return;
+  }
+  // rectangle and cooks_membrane: the plane mesh extruded along z.
+  if (!mesh.has("depth")) mesh.error("", "missing key depth: in 3D a rectangle or cooks_membrane mesh is extruded along z (or use generator = \"box\")");
+  m.depth = mesh.real("depth");
+  m.layers = int(mesh.component("divisions", 2));
+  if (mesh.has("divisions") && m.layers < 1) mesh.error("divisions", "divisions must be >= 1 (the third: layers along z)");
+  if (mesh.has("origin") && mesh.component("origin", 2) != 0.0)
+    mesh.error("origin", "an extruded mesh spans z from 0 to depth: give origin's z as 0");
+  if (mesh.has("size") && mesh.component("size", 2) != m.depth) mesh.error("size", "an extruded mesh spans z from 0 to depth: give size's z as depth");
+  if (double(m.nx) * m.ny * m.layers * 6 > 5e7) mesh.error("divisions", "more than 5e7 tetrahedra requested");
+}
+
+void check_dimension_support(const SceneSpec& s, const TableReader& root) {
+  if (s.scene.dimension != 3) return;
+  const auto scene = root.table("scene");
+  if (s.scene.method != Method::fem)
+    scene.error("method", std::string("scene.dimension = 3 is implemented for method fem; method ") + method_name(s.scene.method) + " is two-dimensional");
+  for (const char* t : {"wall", "inlet"})
+    if (root.has(t)) root.error(t, std::string("[[") + t + "]] is two-dimensional (scene.dimension = 3)");
+  const auto probes = root.array("probe");
+  for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k) {
+    const ProbeKind kind = s.probes[k].kind;
+    const auto& t = probes[k];
+    if (kind == ProbeKind::stress || kind == ProbeKind::pressure_jump)
+      t.error("kind", "kind = \"" + t.string("kind") + "\" reads triangles and quadrilaterals: two-dimensional");
+    if (kind == ProbeKind::angular_momentum && !t.has("component"))
+      t.error("", "missing key component: in 3D an angular_momentum probe reads one component (x, y or z) of sum m r x v");
+  }
+}
+
+}  // namespace loom
