@@ -34,7 +34,7 @@ MeshData triangle_mesh_of(const GmshFile& file, const std::string& surface, cons
   const std::unordered_set<std::size_t> selected = elements_of_group(file, surface, 2, where, key);
   const GmshElementBlock* tri = nullptr;
   for (const auto& b : file.blocks) {
-    if (b.dim == 3) fail("it holds volume elements (" + b.name + "): loom reads two-dimensional meshes (scene.dimension = 2)");
+    if (b.dim == 3) fail("it holds volume elements (" + b.name + "): a three-dimensional body needs scene.dimension = 3 (this scene is two-dimensional)");
     if (b.dim != 2) continue;
     if (b.type != kTriangle3 && b.type != kTriangle6) {
       std::ostringstream os;

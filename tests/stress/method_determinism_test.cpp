@@ -38,6 +38,16 @@ TEST(Stress, PfemOneAndTwoThreadsAgree) {
                 scene_path("constrained_block_pfem.toml"), {"body[0].alpha_s=1.0", "output.every=0"}}});
 }
 
+// 3D fem: the tetrahedral blocks are assembled colour by colour like the triangles.
+TEST(Stress, Fem3dOneAndTwoThreadsAgree) {
+  check_cases("determinism (1 vs 2 threads)",
+              {{"fem 3D: Cook's membrane extruded, tet10, Neo-Hooke nu = 0.499, 5 steps", scene_path("cooks_membrane_3d.toml"),
+                {"material[0].model=\"neo_hooke\"", "material[0].E=70", "material[0].nu=0.499", "boundary[3].traction.y=0.0625",
+                 "time.steps=5", "time.dt=0.2", "output.every=0"}},
+               {"fem 3D: compression of a 8x4x4 box, mixed tet, 10 steps", scene_path("homogeneous_compression_3d.toml"),
+                {"body[0].element=\"p1p1_uphi\"", "body[0].mesh.divisions=[8,4,4]", "output.every=0"}}});
+}
+
 TEST(Stress, MpmOneAndTwoThreadsAgree) {
   check_cases("determinism (1 vs 2 threads)",
               {{"mpm: dynamic Cook's membrane, ASGS, 12 per cell, 40 steps", scene_path("cooks_membrane_mpm_dynamic.toml"),

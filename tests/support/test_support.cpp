@@ -112,7 +112,7 @@ ProbeTable read_probes(const std::string& path) {
 
 ProbeTable run_for_probes(const SceneSpec& scene, const std::string& name, RunSummary* summary) {
   TempDir dir(name);
-  const RunSummary done = make_fem_run(scene, dir.path())->run();
+  const RunSummary done = scene.scene.dimension == 3 ? make_fem_run<3>(scene, dir.path())->run() : make_fem_run(scene, dir.path())->run();
   if (summary) *summary = done;
   return read_probes(dir.file("probes.csv"));
 }

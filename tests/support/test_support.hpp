@@ -50,7 +50,7 @@ struct ProbeTable {
 };
 ProbeTable read_probes(const std::string& path);
 
-// Runs a mesh-based scene (fem, pfem, es_pfem) writing into a temporary directory `name` and returns its probes;
+// Runs a mesh-based scene (fem, pfem, es_pfem; fem in 3D) writing into a temporary directory `name` and returns its probes;
 // the run's summary goes to `summary` when given.
 ProbeTable run_for_probes(const SceneSpec& scene, const std::string& name, RunSummary* summary = nullptr);
 
