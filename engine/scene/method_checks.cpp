@@ -24,9 +24,12 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
       if (s.probes[k].kind != ProbeKind::energy) continue;
       for (const BodySpec& b : s.bodies) {
         const MaterialModel model = s.materials[std::size_t(b.material)].model;
-        if (b.element != Formulation::p1 && b.element != Formulation::tri6 && b.element != Formulation::quad9)
+        if (b.element != Formulation::p1 && b.element != Formulation::tri6 && b.element != Formulation::quad9 &&
+            b.element != Formulation::p1p1_uphi)
           probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +
-                                      " take the displacement elements p1, tri6 and quad9 (body \"" + b.name + "\" is not one)");
+                                      " take the elements p1, tri6, quad9 (tet10) and p1p1_uphi (body \"" + b.name + "\" is none of them)");
+        else if (b.element == Formulation::p1p1_uphi && s.scene.method != Method::fem)
+          probes[k].error("kind", "energy probes of p1p1_uphi bodies need method fem (the reference simplex of a remeshed cell is not its own)");
         else if (model != MaterialModel::neo_hooke && model != MaterialModel::linear_elastic)
           probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +
                                       " take the materials neo_hooke and linear_elastic (body \"" + b.name + "\")");

@@ -1,7 +1,8 @@
 // Energies of the mesh-based methods (fem, pfem) for the energy probe, at the last converged step: kinetic
 // 1/2 sum_A m_A |v_A|^2 with the lumped mass; elastic sum_q dV_0 psi(F_n) over the quadrature points (dV_0 =
-// dV_n / det F_n), for the displacement formulations (p1, tri6, quad9) and the hyperelastic materials (the
-// loader refuses the others); potential -f_ext . u_n of the nodal external forces (body forces and
+// dV_n / det F_n), for the displacement formulations (p1, tri6, quad9; tet4, tet10) and the hyperelastic materials
+// (the loader refuses the others); for p1p1_uphi (method fem) sum_q dV_0 psi(F~_n) with dV_0 from the reference
+// simplex (the PPP stabilisation's quadratic form is not included); potential -f_ext . u_n of the nodal external forces (body forces and
 // tractions, a potential while they are dead loads).
 #pragma once
 
