@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Seed 003's 3D columns solved with loom's FEM on three meshes: the reference for the 3D MPM.
+
+Runs scenes/column_bending_fem.toml and column_twisting_fem.toml at h = 0.25, 0.1667, 0.125 (divisions [4,4,24],
+[6,6,36], [8,8,48]) with the mixed tetrahedron (and tet10 where given), over the paper's 3 s, and prints per case:
+the tip history's first extremum of u_x(A) (time, value), the first period (twice the time between the first two
+zero crossings of u_x(A) after t = 0), the largest |E - E_0| / E_0 of the total energy, Newton iterations and wall
+time. Each run's probes.csv stays in WORK/<case>/.
+
+  tools/column_study.py [--loom build/loom] [--work DIR] [--steps N] [--cases NAME,...] [--threads T]
+
+Case names: bending_p1p1_uphi_h0.25, ..., twisting_tet10_h0.25 (element tet10 runs at dt = 5e-4 for twisting).
+"""
+import argparse, csv, os, subprocess, sys, time
+
+MESHES = {"h0.25": "[4,4,24]", "h0.1667": "[6,6,36]", "h0.125": "[8,8,48]"}
+
+
+def cases():
+    out = []
+    for column in ("bending", "twisting"):
+        for element in ("p1p1_uphi", "tet10"):
+            for h, div in MESHES.items():
+                out.append((f"{column}_{element}_{h}", column, element, div))
+    return out
+
+
+def crossings(t, u):
+    return [t[i - 1] + (t[i] - t[i - 1]) * (-u[i - 1]) / (u[i] - u[i - 1]) for i in range(2, len(u)) if u[i - 1] * u[i] < 0]
+
+
+def summarise(path):
+    rows = list(csv.DictReader(open(path)))
+    t = [float(r["time"]) for r in rows]
+    ux = [float(r["ux_A"]) for r in rows]
+    E = [float(r["total"]) for r in rows]
+    newton = sum(float(r["newton"]) for r in rows)
+    k = max(range(len(ux)), key=lambda i: abs(ux[i]) if t[i] < (crossings(t, ux) or [t[-1]])[0] else -1)
+    z = crossings(t, ux)
+    period = 2 * (z[1] - z[0]) if len(z) >= 2 else float("nan")
+    drift = max(abs(e - E[0]) / E[0] for e in E)
+    return {"t_end": t[-1], "peak_t": t[k], "peak_ux": ux[k], "first_zero": z[0] if z else float("nan"), "period": period,
+            "energy_drift": drift, "newton": newton, "steps": len(rows) - 1}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--loom", default="build/loom")
+    ap.add_argument("--work", default="/tmp/loom_column_study")
+    ap.add_argument("--steps", type=int, default=3000)
+    ap.add_argument("--cases", default="")
+    ap.add_argument("--threads", default="2")
+    a = ap.parse_args()
+    by_name = {c[0]: c for c in cases()}
+    chosen = [by_name[n] for n in a.cases.split(",")] if a.cases else cases()  # in the order given
+    print("case,steps,t_end,peak_t,peak_ux_A,first_zero,period,max_energy_drift,newton,wall_s")
+    for name, column, element, div in chosen:
+        out = os.path.join(a.work, name)
+        os.makedirs(out, exist_ok=True)
+        dt, steps = 1e-3, a.steps
+        if column == "twisting" and element == "tet10":
+            dt, steps = 5e-4, 2 * a.steps
+        cmd = [a.loom, "run", f"scenes/column_{column}_fem.toml", "--out", out, "--quiet", "--threads", a.threads,
+               "--set", f"body[0].element=\"{element}\"", "--set", f"body[0].mesh.divisions={div}",
+               "--set", f"time.dt={dt}", "--set", f"time.steps={steps}", "--set", "output.every=500"]
+        start = time.time()
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        wall = time.time() - start
+        if r.returncode not in (0, 1):
+            print(f"{name},error {r.returncode}: {r.stderr.strip()[:200]}", flush=True)
+            continue
+        s = summarise(os.path.join(out, "probes.csv"))
+        print(f"{name},{s['steps']},{s['t_end']:.4f},{s['peak_t']:.4f},{s['peak_ux']:.5f},{s['first_zero']:.4f},{s['period']:.4f},"
+              f"{s['energy_drift']:.2e},{s['newton']:.0f},{wall:.1f}", flush=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
