@@ -255,6 +255,13 @@ void FemRunT<D>::output_node() {
   });
 }
 
+namespace {
+// The scene's name of a block's element: tri6's formulation on tetrahedra is the scene's tet10.
+const char* element_name(const Cells& cells) {
+  return cells.type == CellType::tet10 ? "tet10" : formulation_name(cells.formulation);
+}
+}  // namespace
+
 template <int D>
 void FemRunT<D>::describe(std::ostream& os) const {
   os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method " << method_name(scene_.scene.method) << ", " << scene_.bodies.size() << (scene_.bodies.size() == 1 ? " body\n" : " bodies\n");
@@ -269,12 +276,12 @@ void FemRunT<D>::describe(std::ostream& os) const {
   }
   for (std::size_t b = 0; b < m_.cells.size(); ++b) {
     {
-      StoreReport r(os, std::string("cells[") + formulation_name(m_.cells[b].formulation) + ", " + cell_type_name(m_.cells[b].type) + "]",
+      StoreReport r(os, std::string("cells[") + element_name(m_.cells[b]) + ", " + cell_type_name(m_.cells[b].type) + "]",
                     m_.cells[b].size());
       m_.cells[b].for_each_column(r);
     }
     os << "    colours: " << m_.cells[b].n_colours() << "\n";
-    StoreReport r(os, std::string("quad_points[") + formulation_name(m_.cells[b].formulation) + "]", m_.quad[b].size());
+    StoreReport r(os, std::string("quad_points[") + element_name(m_.cells[b]) + "]", m_.quad[b].size());
     m_.quad[b].for_each_column(r);
   }
   for (std::size_t e = 0; e < m_.edges.size(); ++e) {
@@ -291,8 +298,8 @@ void FemRunT<D>::describe(std::ostream& os) const {
      << m_.system.pattern.matrix.nonZeros() << " non-zeros; solver "
      << linear_solver_name(m_.linear_solver)
      << "\n";
-  os << "  boundary_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, " << m_.bc.traction_edges.size()
-     << " traction edges, loads " << (m_.bc.has_loads ? (m_.bc.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
+  os << "  boundary_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, "
+     << (D == 3 ? m_.bc.traction_faces.size() : m_.bc.traction_edges.size()) << (D == 3 ? " traction faces" : " traction edges") << ", loads " << (m_.bc.has_loads ? (m_.bc.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
   graph_->print(os);
 }
 

@@ -71,6 +71,14 @@ TEST(Program, InfoPrintsTheStepGraphAndTheStores) {
   EXPECT_NE(coarse.out.find("  cells[p1, tri3]: 16 entities"), std::string::npos) << coarse.out;
 }
 
+TEST(Program, InfoNamesTheTetrahedraOfA3dScene) {
+  const Command c = run_loom({"info", kSource + "/scenes/cooks_membrane_3d.toml"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  // 16 x 16 quadrilaterals x 1 layer: 512 prisms of 3 tetrahedra; 289 x 2 corners and the edge nodes of tet10.
+  for (const char* line : {"  cells[tet10, tet10]: 1536 entities", "  quad_points[tet10]: 6144 entities", " traction faces, loads constant"})
+    EXPECT_NE(c.out.find(line), std::string::npos) << line << " not in:\n" << c.out;
+}
+
 TEST(Program, SchemaListsEveryKeyAndMarkdownPrintsATable) {
   const Command plain = run_loom({"schema"});
   ASSERT_EQ(plain.exit_code, 0);
