@@ -66,6 +66,22 @@ std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, co
   return e;
 }
 
+const MeshRegion& boundary_group(const SceneSpec& scene, const BodyRegions& regions, std::size_t k) {
+  const BoundarySpec& spec = scene.boundaries[k];
+  const auto body = std::size_t(spec.body);
+  const MeshRegion* region = nullptr;
+  std::string known;
+  if (body < regions.size())
+    for (const auto& r : regions[body]) {
+      if (r.name == spec.group) region = &r;
+      known += (known.empty() ? "" : ", ") + ("\"" + r.name + "\"");
+    }
+  LOOM_CHECK(region, InputError,
+             spec.region_where << ": error: boundary[" << k << "].region.group: the mesh of body \"" << scene.bodies[body].name
+                               << "\" has no physical group \"" << spec.group << "\" (its groups: " << (known.empty() ? "none" : known) << ")");
+  return *region;
+}
+
 namespace {
 // Cells with a node on each side (tri6, quad9); a quad9 centre node is never on the boundary.
 bool quadratic(const Cells& cb) { return cb.stride == 6 || cb.stride == 9; }
@@ -117,16 +133,7 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
       }
       continue;
     }
-    const MeshRegion* region = nullptr;
-    std::string known;
-    if (body < regions.size())
-      for (const auto& r : regions[body]) {
-        if (r.name == spec.group) region = &r;
-        known += (known.empty() ? "" : ", ") + ("\"" + r.name + "\"");
-      }
-    LOOM_CHECK(region, InputError,
-               spec.region_where << ": error: boundary[" << k << "].region.group: the mesh of body \"" << scene.bodies[body].name
-                                 << "\" has no physical group \"" << spec.group << "\" (its groups: " << (known.empty() ? "none" : known) << ")");
+    const MeshRegion* region = &boundary_group(scene, regions, k);
     for (Index v : region->corners) in[std::size_t(v)] = 1;
     const std::set<std::array<Index, 2>> curve(region->edges.begin(), region->edges.end());
     for (Index i = 0; i < nodes.size(); ++i) {

@@ -43,6 +43,9 @@ std::optional<ExpressionSpec> combine(const std::optional<ExpressionSpec>& a, co
 template <int D>
 std::vector<DofKind> dof_kinds(const BoundaryConditions<D>& bc, const std::vector<Cells>& cells, Index n_nodes, int dofs_per_node);
 
+// The physical group of the body's mesh file that boundary k's region names; InputError listing the groups if none.
+const MeshRegion& boundary_group(const SceneSpec& scene, const BodyRegions& regions, std::size_t k);
+
 // The prescribed dofs found so far, and the boundary that prescribed each (for the message when two disagree).
 struct PrescribedDofs {
   std::map<Index, std::size_t> at;  // dof -> entry of bc.prescribed

@@ -156,16 +156,7 @@ BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const
         in[std::size_t(i)] = node_body[std::size_t(i)] == spec.body && (nodes.X[i] - bmin).minCoeff() >= -tol && (bmax - nodes.X[i]).minCoeff() >= -tol;
       continue;
     }
-    const MeshRegion* region = nullptr;
-    std::string known;
-    if (body < regions.size())
-      for (const auto& r : regions[body]) {
-        if (r.name == spec.group) region = &r;
-        known += (known.empty() ? "" : ", ") + ("\"" + r.name + "\"");
-      }
-    LOOM_CHECK(region, InputError,
-               spec.region_where << ": error: boundary[" << k << "].region.group: the mesh of body \"" << scene.bodies[body].name
-                                 << "\" has no physical group \"" << spec.group << "\" (its groups: " << (known.empty() ? "none" : known) << ")");
+    const MeshRegion* region = &boundary_group(scene, regions, k);
     for (Index v : region->corners) in[std::size_t(v)] = 1;
     for (Index i = 0; i < nodes.size(); ++i) {
       const auto [a, b] = mid_corners[std::size_t(i)];
