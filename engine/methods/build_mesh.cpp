@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "engine/core/errors.hpp"
 #include "engine/mesh/colouring.hpp"
 #include "engine/mesh/generators.hpp"
 #include "engine/mesh/gmsh_file.hpp"
@@ -32,6 +33,8 @@ MeshData generate_body_mesh(const MeshSpec& spec) {
       }
       return mesh;
     }
+    case MeshGenerator::box:  // the scene checks refuse it in 2D (dimension_options.cpp)
+      LOOM_CHECK(false, RunError, "generate_body_mesh: generator box is three-dimensional (build_mesh_3d)");
   }
   distort_interior_nodes(mesh, spec.distortion, std::uint64_t(spec.seed));
   if (spec.scale != 1.0) scale_mesh(mesh, spec.scale);

@@ -198,7 +198,10 @@ void FemRunT<D>::remesh_node() {
 
 template <int D>
 void FemRunT<D>::newton_node() {
-  reset_iterate(m_.nodes);
+  if (scene_.time.predictor == Predictor::constant_acceleration && m_.nodes.v.used())
+    predict_iterate(ctx_.dt, m_.nodes);
+  else
+    reset_iterate(m_.nodes);
   FemNewtonProblemT<D> problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_, &m_.edges);
   problem.set_walls(&m_.walls, &m_.node_body);
   NewtonSettings settings = newton_settings_of(scene_.solver);

@@ -7,6 +7,8 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
   const auto time = root.table("time"), grid = root.table("grid");
   const auto bodies = root.array("body"), boundaries = root.array("boundary"), probes = root.array("probe");
   const auto materials = root.array("material");
+  if (mpm && time.has("predictor"))
+    time.error("predictor", "the MPM step starts from the grid reset to zero; predictor is used by methods fem, pfem and es_pfem");
   if (!mpm) {
     if (grid.present()) root.error("grid", "[grid] is used by method = \"mpm\" only");
     if (time.has("adaptive_dt")) time.error("adaptive_dt", "adaptive time steps are implemented by methods mpm and mpm_fem");

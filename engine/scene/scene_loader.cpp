@@ -107,6 +107,10 @@ class Loader {
                                                                                                {"equilibrium", InitialAcceleration::equilibrium}});
     if (t.has("initial_acceleration") && s.time.integrator != Integrator::newmark && s.time.integrator != Integrator::bossak)
       t.error("initial_acceleration", "initial_acceleration is used by integrator = \"newmark\" or \"bossak\" only");
+    s.time.predictor = pick<Predictor>(t.string("predictor"), {{"last_step", Predictor::last_step},
+                                                               {"constant_acceleration", Predictor::constant_acceleration}});
+    if (t.has("predictor") && s.time.integrator != Integrator::newmark && s.time.integrator != Integrator::bossak)
+      t.error("predictor", "predictor is used by integrator = \"newmark\" or \"bossak\" only");
     s.time.dt = t.real("dt");
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});

@@ -26,6 +26,7 @@ inline const char* method_name(Method m) {
 inline bool is_mpm(Method m) { return m == Method::mpm || m == Method::mpm_fem; }
 enum class Integrator { static_, euler_backward, newmark, bossak };
 enum class InitialAcceleration { zero, equilibrium };
+enum class Predictor { last_step, constant_acceleration };
 enum class Stabilisation { none, ppp, asgs, osgs };
 enum class EnergyPart { kinetic, elastic, total, potential, mechanical };
 enum class MassKind { lumped, consistent };
@@ -57,6 +58,7 @@ struct TimeSpec {
   int steps = 1;
   MassKind mass = MassKind::lumped;
   InitialAcceleration initial_acceleration = InitialAcceleration::zero;  // newmark, bossak
+  Predictor predictor = Predictor::last_step;  // newmark, bossak (method fem): where Newton starts a step
   double alpha = -0.3;  // bossak: alpha_B in [-1/3, 0]
   double beta = 0.25, gamma = 0.5;  // newmark (fem; mpm with scheme particle_newmark)
   // time.stop_when: the run ends (completed) after the first step at t >= stop_after whose probe `stop_probe`

@@ -53,6 +53,11 @@ std::vector<KeySpec> build_schema() {
                   "newmark, bossak: the acceleration at t = 0: zero ([Moreno et al.] Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
                   "lumped mass, so that a suddenly applied constant load is integrated exactly).")
                   .one_of({"zero", "equilibrium"}).by_default("zero"));
+  s.push_back(key("time.predictor", K::choice,
+                  "newmark, bossak (methods fem, pfem, es_pfem): where Newton starts each step: last_step (u = u_n), or constant_acceleration "
+                  "(u = u_n + dt v_n + dt^2 a_n / 2, whose residual is only f_int's change along a smooth path: fast rotations, "
+                  "where u_n leaves the whole inertial force to the first Newton update).")
+                  .one_of({"last_step", "constant_acceleration"}).by_default("last_step"));
   s.push_back(key("time.stop_when", K::table,
                   "End the run early, as completed, after the first step at t >= after whose probe reads a magnitude below `below` "
                   "(a flow that has come to rest: a speed probe), or has changed by less than rate_below * over in the last `over` of "

@@ -28,9 +28,17 @@ void reset_iterate(Nodes<D>& nodes) {
   });
 }
 
+template <int D>
+void predict_iterate(double dt, Nodes<D>& nodes) {
+  reset_iterate(nodes);
+  for_each_index(nodes.size(), [&](Index i) { nodes.u[i] += dt * nodes.v_n[i] + 0.5 * dt * dt * nodes.a_n[i]; });
+}
+
 template void update_iterate<2>(double, const LinearSystem&, Nodes<2>&);
 template void update_iterate<3>(double, const LinearSystem&, Nodes<3>&);
 template void reset_iterate<2>(Nodes<2>&);
 template void reset_iterate<3>(Nodes<3>&);
+template void predict_iterate<2>(double, Nodes<2>&);
+template void predict_iterate<3>(double, Nodes<3>&);
 
 }  // namespace loom
