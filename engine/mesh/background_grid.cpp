@@ -1,53 +1,14 @@
 #include "engine/mesh/background_grid.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/cell_buckets.hpp"
 #include "engine/mesh/colouring.hpp"
 
 namespace loom {
-namespace {
-
-// Bucket index over the bounding box with about one cell per bucket.
-void build_buckets(const Nodes<2>& nodes, const Cells& cells, GridLayout& layout) {
-  const Vec2 extent = (layout.hi - layout.lo).cwiseMax(1e-300);
-  const double per_bucket = std::sqrt(extent.x() * extent.y() / std::max<Index>(cells.size(), 1));
-  layout.bx = std::clamp(int(std::ceil(extent.x() / per_bucket)), 1, 4096);
-  layout.by = std::clamp(int(std::ceil(extent.y() / per_bucket)), 1, 4096);
-  layout.bucket_size = Vec2(extent.x() / layout.bx, extent.y() / layout.by);
-  auto range = [&](Index c, int& i0, int& i1, int& j0, int& j1) {
-    Vec2 lo = nodes.X[cells.node(c, 0)], hi = lo;
-    for (int a = 1; a < 3; ++a) lo = lo.cwiseMin(nodes.X[cells.node(c, a)]), hi = hi.cwiseMax(nodes.X[cells.node(c, a)]);
-    lo.array() -= layout.tolerance, hi.array() += layout.tolerance;
-    i0 = std::clamp(int(std::floor((lo.x() - layout.lo.x()) / layout.bucket_size.x())), 0, layout.bx - 1);
-    i1 = std::clamp(int(std::floor((hi.x() - layout.lo.x()) / layout.bucket_size.x())), 0, layout.bx - 1);
-    j0 = std::clamp(int(std::floor((lo.y() - layout.lo.y()) / layout.bucket_size.y())), 0, layout.by - 1);
-    j1 = std::clamp(int(std::floor((hi.y() - layout.lo.y()) / layout.bucket_size.y())), 0, layout.by - 1);
-  };
-  layout.bucket_offsets.assign(std::size_t(layout.bx) * std::size_t(layout.by) + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<Index> fill(layout.bucket_offsets.begin(), layout.bucket_offsets.end() - 1);
-    for (Index c = 0; c < cells.size(); ++c) {
-      int i0, i1, j0, j1;
-      range(c, i0, i1, j0, j1);
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
-          const std::size_t b = std::size_t(j) * std::size_t(layout.bx) + std::size_t(i);
-          if (pass == 0) ++layout.bucket_offsets[b + 1];
-          else layout.bucket_cells[std::size_t(fill[b]++)] = c;
-        }
-    }
-    if (pass == 0) {
-      for (std::size_t b = 0; b + 1 < layout.bucket_offsets.size(); ++b) layout.bucket_offsets[b + 1] += layout.bucket_offsets[b];
-      layout.bucket_cells.assign(std::size_t(layout.bucket_offsets.back()), kNoIndex);
-    }
-  }
-}
-
-}  // namespace
 
 void find_cell_neighbours(Cells& cells, Index n_nodes) {
   const int sides = cells.sides();

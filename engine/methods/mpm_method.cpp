@@ -88,9 +88,9 @@ void MpmRun::build_graph() {
   name_stores(g);
 
   // 1. Initialisation phase (Algorithm 1 lines 5-15).
-  g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
-  g.add_system("locate_traction_points", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.traction_points, m_.traction_loc);
-  g.add_system("locate_probe_points", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.probe_points, m_.probe_loc);
+  g.add_system("locate_particles", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
+  g.add_system("locate_traction_points", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.traction_points, m_.traction_loc);
+  g.add_system("locate_probe_points", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.probe_points, m_.probe_loc);
   g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
   g.add_system("project_to_grid", &project_to_grid, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
   g.add_system("apply_grid_loads", &apply_grid_loads, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
@@ -117,7 +117,7 @@ void MpmRun::build_particle_newmark_graph() {
   StepGraph& g = *graph_;
   name_stores(g);
   if (m_.coupled) g.add_system("reset_grid", &reset_grid, m_.reset, m_.coupled_mesh.fem_node, m_.grid_nodes);
-  g.add_system("locate_particles", &locate_points, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
+  g.add_system("locate_particles", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
   g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
   g.add_system("flag_soft_cells", &flag_soft_cells, m_.grid, m_.outside_node, m_.activity);
   if (m_.particle_loc.receding.used())
