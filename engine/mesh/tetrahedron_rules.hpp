@@ -20,7 +20,8 @@
 //    6 -> 14, 12 -> 24 points per tetrahedron: under that reading the paper's 12 is the 24-point rule here,
 //    and 24 and 48 have no counterpart;
 //  - taken literally, 24 is the 24-point rule here (degree 6); 12 and 48 have no standard symmetric rule.
-//    Composite rules reach them with equal weights (not implemented): the tetrahedron splits into 12
+//    Equal-weight composite rules of low degree would reach them, should a scene need the literal counts
+//    (loom offers only the four rules below, whose degrees are higher): the tetrahedron splits into 12
 //    sub-tetrahedra of equal volume (centroid, one face's centroid, two corners of that face), whose
 //    centroids form the 12-point orbit (19, 19, 7, 3) / 48 (degree 1); 48 is that split with the 4-point
 //    rule in each sub-tetrahedron (degree 2). The barycentric subdivision (24 equal sub-tetrahedra: corner,
