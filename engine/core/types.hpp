@@ -21,6 +21,7 @@ using Vec4 = Vec<4>;
 using Mat3 = Eigen::Matrix3d;
 using Mat32 = Eigen::Matrix<double, 3, 2>;  // one row per corner of a linear triangle: shape gradients
 using Mat42 = Eigen::Matrix<double, 4, 2>;  // one row per corner of a bilinear quadrilateral
+using Mat43 = Eigen::Matrix<double, 4, 3>;  // one row per corner of a linear tetrahedron: shape gradients
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 

@@ -6,7 +6,8 @@
 //   dN/dx = [-(1 - eta), 1 - eta, eta, -eta] / h_x,   dN/dy = [-(1 - xi), -xi, xi, 1 - xi] / h_y,
 // and xi = N_1 + N_2, eta = N_2 + N_3, so the gradients follow from N and the cell. Outside the cell the
 // same formulas extend N (bi)linearly: the values still sum to one and reproduce linear fields.
-// A Vec4 holds N for either cell; a triangle's fourth entry is 0.
+// A Vec4 holds N for either cell; a triangle's fourth entry is 0. In 3D (D = 3) the cells are linear
+// tetrahedra (tet4): N are the barycentric coordinates (tet_shape_at), their gradients constant and stored.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,8 +19,8 @@
 
 namespace loom {
 
-template <int NC>
-using CornerGradients = Eigen::Matrix<double, NC, 2>;  // one row per corner: dN_a/dx, dN_a/dy
+template <int NC, int D = 2>
+using CornerGradients = Eigen::Matrix<double, NC, D>;  // one row per corner: dN_a/dx, dN_a/dy (, dN_a/dz)
 
 inline Vec4 grid_shape_at(const Cells& grid, const Nodes<2>& nodes, Index c, const Vec2& x) {
   const Vec2& x0 = nodes.X[grid.node(c, 0)];
@@ -47,9 +48,12 @@ inline double grid_shape_inside(int corners, const Vec4& N) {
   return std::min(std::min(xi, 1.0 - xi), std::min(eta, 1.0 - eta));
 }
 
-template <int NC>
-CornerGradients<NC> grid_shape_gradients(const Cells& grid, const Nodes<2>& nodes, Index c, const Vec4& N) {
-  if constexpr (NC == 3) {
+template <int NC, int D>
+CornerGradients<NC, D> grid_shape_gradients(const Cells& grid, const Nodes<D>& nodes, Index c, const Vec4& N) {
+  if constexpr (D == 3) {
+    static_assert(NC == 4, "3D grids are tet4");
+    return grid.gradient_3d[c];
+  } else if constexpr (NC == 3) {
     return grid.gradient[c];
   } else {
     const Vec2 h = nodes.X[grid.node(c, 2)] - nodes.X[grid.node(c, 0)];

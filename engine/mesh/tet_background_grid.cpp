@@ -62,14 +62,25 @@ void build_tet_grid(const TetMeshData& mesh, const BoxSpec* box, Formulation for
   colour_cells(cells, nodes.size());
   find_face_neighbours(cells);
 
-  // 2. Geometry: volumes (the shape functions follow from the corners where they are needed).
+  // 2. Geometry: volumes and the constant shape gradients. With the edges e_k = x_k - x_0 and the cross
+  // products n1 = e2 x e3, n2 = e3 x e1, n3 = e1 x e2 (tet_shape_at), N_k = (x - x_0) . n_k / (e1 . n1), so
+  // grad N_k = n_k / (6 V) and grad N_0 = -(grad N_1 + grad N_2 + grad N_3).
   cells.measure.use();
   cells.measure.resize(cells.size(), 0.0);
+  cells.gradient_3d.use();
+  cells.gradient_3d.resize(cells.size(), Mat43::Zero());
   for (Index c = 0; c < cells.size(); ++c) {
-    const double volume = tet_volume(nodes.X[cells.node(c, 0)], nodes.X[cells.node(c, 1)], nodes.X[cells.node(c, 2)],
-                                     nodes.X[cells.node(c, 3)]);
+    const Vec3& x0 = nodes.X[cells.node(c, 0)];
+    const Vec3 e1 = nodes.X[cells.node(c, 1)] - x0, e2 = nodes.X[cells.node(c, 2)] - x0, e3 = nodes.X[cells.node(c, 3)] - x0;
+    const double volume = tet_volume(x0, nodes.X[cells.node(c, 1)], nodes.X[cells.node(c, 2)], nodes.X[cells.node(c, 3)]);
     LOOM_CHECK(volume > 0.0, InputError, "grid cell " << c << " is degenerate or inverted (volume " << volume << ")");
     cells.measure[c] = volume;
+    const double inv_det = 1.0 / e1.dot(e2.cross(e3));
+    Mat43& g = cells.gradient_3d[c];
+    g.row(1) = e2.cross(e3).transpose() * inv_det;
+    g.row(2) = e3.cross(e1).transpose() * inv_det;
+    g.row(3) = e1.cross(e2).transpose() * inv_det;
+    g.row(0) = -(g.row(1) + g.row(2) + g.row(3));
   }
 
   // 3. Layout.

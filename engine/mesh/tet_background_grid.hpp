@@ -1,8 +1,8 @@
 // Builds a 3D MPM background grid of linear tetrahedra (tet4) from a tetrahedral mesh: the node store (X),
 // the cell store with colours, face neighbours and volumes (the grid never moves, so they are computed
 // once), and the layout the locate system searches with (systems/locate/locate_points.hpp). The shape
-// functions of a tet4 cell are its barycentric coordinates, computed from the corner positions
-// (Cells::gradient holds 2D triangle gradients only).
+// functions of a tet4 cell are its barycentric coordinates, computed from the corner positions (tet_shape_at);
+// their constant gradients are stored in Cells::gradient_3d.
 #pragma once
 
 #include <Eigen/Geometry>  // cross
@@ -18,7 +18,8 @@ namespace loom {
 // `box`: the spec the mesh was generated from by generate_box, undistorted (arithmetic locate over the Kuhn
 // cubes); nullptr for any other tetrahedralisation (walk and bucket index).
 // cells.neighbour: 4 per cell, entry a the cell across the face opposite corner a (kTetFaces[a]), kNoIndex
-// on the boundary. cells.measure: volume, L^3. Throws InputError if a cell is degenerate or inverted.
+// on the boundary. cells.measure: volume, L^3. cells.gradient_3d: dN_a/dx of the corners, 1/L. Throws InputError if a
+// cell is degenerate or inverted.
 void build_tet_grid(const TetMeshData& mesh, const BoxSpec* box, Formulation formulation, Nodes<3>& nodes, Cells& cells,
                     GridLayoutT<3>& layout);
 

@@ -25,11 +25,9 @@ struct BodyTets {
   std::vector<MeshRegion> regions;
 };
 
-BodyTets body_tets(const BodySpec& body) {
-  const MeshSpec& spec = body.mesh;
-  const bool quadratic = tet_type_of(body.element) == CellType::tet10;
+// The mesh a spec names, unscaled and undistorted; a file's 10-node cells in `file_tet10`.
+TetMeshData read_tet_mesh(const MeshSpec& spec, Tet10MeshData& file_tet10) {
   TetMeshData mesh;
-  Tet10MeshData file_tet10;
   switch (spec.generator) {
     case MeshGenerator::box: {
       BoxSpec b;
@@ -55,6 +53,14 @@ BodyTets body_tets(const BodySpec& body) {
       break;
     }
   }
+  return mesh;
+}
+
+BodyTets body_tets(const BodySpec& body) {
+  const MeshSpec& spec = body.mesh;
+  const bool quadratic = tet_type_of(body.element) == CellType::tet10;
+  Tet10MeshData file_tet10;
+  TetMeshData mesh = read_tet_mesh(spec, file_tet10);
   if (spec.distortion > 0.0) distort_interior_nodes(mesh, spec.distortion, std::uint64_t(spec.seed));
   BodyTets out;
   out.regions = mesh.regions;
@@ -72,6 +78,15 @@ BodyTets body_tets(const BodySpec& body) {
 }
 
 }  // namespace
+
+TetMeshData tet4_mesh_of(const MeshSpec& spec) {
+  Tet10MeshData unused;
+  TetMeshData mesh = read_tet_mesh(spec, unused);
+  if (spec.distortion > 0.0) distort_interior_nodes(mesh, spec.distortion, std::uint64_t(spec.seed));
+  if (spec.scale != 1.0)
+    for (auto& x : mesh.X) x *= spec.scale;
+  return mesh;
+}
 
 std::vector<Index> build_mesh_3d(const SceneSpec& scene, Nodes<3>& nodes, std::vector<Cells>& cells, BodyRegions* regions) {
   std::vector<BodyTets> bodies;

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "engine/mesh/tet_mesh.hpp"
 #include "engine/methods/build_mesh.hpp"
 #include "engine/scene/scene_spec.hpp"
 #include "engine/store/boundary_conditions.hpp"
@@ -19,6 +20,10 @@ namespace loom {
 // nodes of every body first, then the tet10 mid-nodes (a file's own, else on the straight edges). Returns the
 // body of each node; `regions` receives each body's physical groups (corner nodes).
 std::vector<Index> build_mesh_3d(const SceneSpec& scene, Nodes<3>& nodes, std::vector<Cells>& cells, BodyRegions* regions = nullptr);
+
+// The linear tetrahedra of a 3D mesh spec (box, extruded plane mesh or gmsh file; a file's quadratic cells by
+// their corners), distorted and scaled as the spec says: the MPM's background grid and body meshes.
+TetMeshData tet4_mesh_of(const MeshSpec& spec);
 
 BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const Nodes<3>& nodes, const std::vector<Cells>& cells,
                                                    const std::vector<Index>& node_body, const BodyRegions& regions, int dofs_per_node);

@@ -14,6 +14,8 @@ std::unique_ptr<MethodRun> make_method_run(const SceneSpec& scene, const RunOpti
       if (scene.scene.dimension == 3) return std::make_unique<FemRunT<3>>(scene, options);
       return std::make_unique<FemRun>(scene, options);
     case Method::mpm:
+      if (scene.scene.dimension == 3) return std::make_unique<MpmRunT<3>>(scene, options);
+      return std::make_unique<MpmRun>(scene, options);
     case Method::mpm_fem: return std::make_unique<MpmRun>(scene, options);
     default: break;
   }

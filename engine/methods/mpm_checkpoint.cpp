@@ -25,7 +25,8 @@ void visit_stores(Model& m, Visit&& f) {
 
 }  // namespace
 
-void MpmRun::write_checkpoint(int step) {
+template <int D>
+void MpmRunT<D>::write_checkpoint(int step) {
   LOOM_ASSERT(step == ctx_.step, "a checkpoint is of the step that just completed");
   writer_.wait();  // the step's frames are in the collection
   ScopedTimer timer(timers_, "checkpoint");
@@ -36,7 +37,8 @@ void MpmRun::write_checkpoint(int step) {
   store_checkpoint(w, options_, step);
 }
 
-CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
+template <int D>
+CheckpointHeader MpmRunT<D>::restore_checkpoint(const CheckpointReader& r) {
   const CheckpointHeader h = read_checkpoint_header(r, scene_, options_.log);
   std::vector<std::size_t> sizes;  // what the scene built: the same particles, points and grid
   visit_stores(std::as_const(m_), [&](const char*, const auto& store) { sizes.push_back(std::size_t(store.size())); });
@@ -54,9 +56,15 @@ CheckpointHeader MpmRun::restore_checkpoint(const CheckpointReader& r) {
   // The probes of the restored step, which an adaptive step size reads before the next step writes them (with the
   // body forces of that step's time, which energy probes read).
   apply_grid_loads(ctx_, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points, m_.traction_loc, m_.bc);
-  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView{m_.grid, m_.activity, m_.grid_nodes},
+  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView<D>{m_.grid, m_.activity, m_.grid_nodes},
                            m_.system, m_.bc, 0, probe_values_);
   return h;
 }
+
+
+template void MpmRunT<2>::write_checkpoint(int);
+template void MpmRunT<3>::write_checkpoint(int);
+template CheckpointHeader MpmRunT<2>::restore_checkpoint(const CheckpointReader&);
+template CheckpointHeader MpmRunT<3>::restore_checkpoint(const CheckpointReader&);
 
 }  // namespace loom

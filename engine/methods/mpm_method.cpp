@@ -29,24 +29,30 @@
 #include "systems/output/snapshot_particles.hpp"
 
 namespace loom {
-MpmRun::MpmRun(const SceneSpec& scene, const RunOptions& options)
+template <int D>
+MpmRunT<D>::MpmRunT(const SceneSpec& scene, const RunOptions& options)
     : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance) {
   ctx_.scene = &scene_;
   if (options_.profile) timers_.enable_profile();
-  // A static model must hold the active grid's rigid motions; a point probe must start in the body.
-  check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
-  if (scene_.bodies.size() == 1 && scene_.bodies[0].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
-    const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
-    check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
+  // A static model must hold the active grid's rigid motions; a point probe must start in the body. (3D: as the 3D
+  // fem, a free body shows as a singular tangent, and a probe must start in the grid.)
+  if constexpr (D == 2) {
+    check_rigid_motions_held(scene_, m_.grid_nodes, {&m_.grid}, m_.bc, {}, &m_.activity.active_cells);
+    if (scene_.bodies.size() == 1 && scene_.bodies[0].particles.kind == ParticleGenerator::none) {  // generated particle sets have no mesh: probes follow the nearest particle
+      const MeshData body_mesh = generate_body_mesh(scene_.bodies[0].mesh);
+      check_point_probes_inside(scene_, body_mesh.X, body_mesh.triangles, std::vector<Index>(std::size_t(body_mesh.n_triangles()), 0));
+    }
   }
   probe_plan_ = plan_particle_probes(scene_);
   if (m_.particle_newmark) build_particle_newmark_graph();
   else build_graph();
 }
 
-MpmRun::~MpmRun() = default;
+template <int D>
+MpmRunT<D>::~MpmRunT() = default;
 
-void MpmRun::name_stores(StepGraph& g) {
+template <int D>
+void MpmRunT<D>::name_stores(StepGraph& g) {
   g.name_store(&m_.layout, "grid_layout");
   g.name_store(&m_.grid, "grid_cells");
   g.name_store(&m_.grid_nodes, "grid_nodes");
@@ -71,7 +77,8 @@ void MpmRun::name_stores(StepGraph& g) {
 }
 
 // Probes and frames, on a converged state at the end of a step.
-void MpmRun::add_output_nodes(StepGraph& g) {
+template <int D>
+void MpmRunT<D>::add_output_nodes(StepGraph& g) {
   const auto probes = g.add_node("probes",
                                  {{&m_.particles, &m_.probe_points, &m_.grid, &m_.activity, &m_.grid_nodes, &m_.materials, &m_.system, &m_.bc},
                                   {&probe_writer_}},
@@ -82,18 +89,20 @@ void MpmRun::add_output_nodes(StepGraph& g) {
   g.run_if(output, &status_, [this] { return status_.converged && ctx_.step_end && frame_due(); });
 }
 
-void MpmRun::build_graph() {
+template <int D>
+void MpmRunT<D>::build_graph() {
   graph_ = std::make_unique<StepGraph>("mpm", ctx_, timers_);
   StepGraph& g = *graph_;
   name_stores(g);
 
   // 1. Initialisation phase (Algorithm 1 lines 5-15).
-  g.add_system("locate_particles", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
-  g.add_system("locate_traction_points", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.traction_points, m_.traction_loc);
-  g.add_system("locate_probe_points", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.probe_points, m_.probe_loc);
-  g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
-  g.add_system("project_to_grid", &project_to_grid, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
-  g.add_system("apply_grid_loads", &apply_grid_loads, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
+  g.add_system("locate_particles", &locate_points<D>, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
+  if (D == 2 || m_.traction_points.X.size() > 0)
+    g.add_system("locate_traction_points", &locate_points<D>, m_.layout, m_.grid, m_.grid_nodes, m_.traction_points, m_.traction_loc);
+  g.add_system("locate_probe_points", &locate_points<D>, m_.layout, m_.grid, m_.grid_nodes, m_.probe_points, m_.probe_loc);
+  g.add_system("activate_grid", &activate_grid<D>, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
+  g.add_system("project_to_grid", &project_to_grid<D>, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
+  g.add_system("apply_grid_loads", &apply_grid_loads<D>, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
                m_.traction_loc, m_.bc);
   // 2. Updated-Lagrangian solve on the grid (lines 17-42).
   g.add_node("newton",
@@ -101,28 +110,34 @@ void MpmRun::build_graph() {
              [this] { newton_node(); }, m_.osgs ? "assemble -> solve -> update until converged; OSGS projections before each assembly"
                                                   : "assemble -> solve -> update until converged");
   // 3. Convective phase (lines 44-49), on a converged state only.
-  const auto interpolate = g.add_system("interpolate_to_particles", &interpolate_to_particles, m_.grid, m_.grid_nodes, m_.particle_loc, m_.particles);
+  const auto interpolate = g.add_system("interpolate_to_particles", &interpolate_to_particles<D>, m_.grid, m_.grid_nodes, m_.particle_loc, m_.particles);
   g.run_if(interpolate, &status_, [this] { return status_.converged; });
-  const auto move = g.add_system("move_traction_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.traction_loc, m_.traction_points);
-  g.run_if(move, &status_, [this] { return status_.converged; });
-  const auto tracers = g.add_system("move_probe_points", &move_with_grid, m_.grid, m_.grid_nodes, m_.activity, m_.probe_loc, m_.probe_points);
+  if (D == 2 || m_.traction_points.X.size() > 0) {
+    const auto move = g.add_system("move_traction_points", &move_with_grid<D>, m_.grid, m_.grid_nodes, m_.activity, m_.traction_loc, m_.traction_points);
+    g.run_if(move, &status_, [this] { return status_.converged; });
+  }
+  const auto tracers = g.add_system("move_probe_points", &move_with_grid<D>, m_.grid, m_.grid_nodes, m_.activity, m_.probe_loc, m_.probe_points);
   g.run_if(tracers, &status_, [this] { return status_.converged; });
   add_output_nodes(g);
   g.build();
 }
 
 // Seed 004 (Aulisa & Capodaglio §3): nothing is projected to the grid; the particles carry the Newmark state.
-void MpmRun::build_particle_newmark_graph() {
+template <int D>
+void MpmRunT<D>::build_particle_newmark_graph() {
+  if constexpr (D == 3) {
+    throw InputError(scene_.file + ": error: mpm.scheme: particle_newmark is two-dimensional");
+  } else {
   graph_ = std::make_unique<StepGraph>("mpm (particle Newmark)", ctx_, timers_);
   StepGraph& g = *graph_;
   name_stores(g);
   if (m_.coupled) g.add_system("reset_grid", &reset_grid, m_.reset, m_.coupled_mesh.fem_node, m_.grid_nodes);
   g.add_system("locate_particles", &locate_points<2>, m_.layout, m_.grid, m_.grid_nodes, m_.particles, m_.particle_loc);
-  g.add_system("activate_grid", &activate_grid, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
+  g.add_system("activate_grid", &activate_grid<2>, m_.grid, m_.particle_loc, m_.bc, m_.activity, m_.system);
   g.add_system("flag_soft_cells", &flag_soft_cells, m_.grid, m_.outside_node, m_.activity);
   if (m_.particle_loc.receding.used())
     g.add_system("mark_receding_particles", &mark_receding_particles, m_.grid, m_.grid_nodes, m_.wall_sides, m_.particles, m_.particle_loc);
-  g.add_system("apply_grid_loads", &apply_grid_loads, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
+  g.add_system("apply_grid_loads", &apply_grid_loads<2>, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
                m_.traction_loc, m_.bc);
   g.add_node("newton",
              {{&m_.grid, &m_.activity, &m_.particles, &m_.materials, &m_.bc}, {&m_.grid_nodes, &m_.particle_loc, &m_.system, &status_}},
@@ -137,13 +152,15 @@ void MpmRun::build_particle_newmark_graph() {
   g.run_if(follow, &status_, [this] { return status_.converged; });
   add_output_nodes(g);
   g.build();
+  }
 }
 
-void MpmRun::newton_node() {
+template <int D>
+void MpmRunT<D>::newton_node() {
   if (m_.particle_newmark)  // the grid starts every step undeformed: u is the step's displacement
     for (Index i = 0; i < m_.grid_nodes.size(); ++i) m_.grid_nodes.u[i].setZero();
   update_grid_kinematics(ctx_, m_.grid_nodes);  // grid Newmark: the predictor from the reset grid (lines 13-15)
-  MpmNewtonProblem problem(ctx_, m_, solver_, timers_);
+  MpmNewtonProblemT<D> problem(ctx_, m_, solver_, timers_);
   NewtonSettings settings = newton_settings_of(scene_.solver);
   settings.expected_iterations = status_.iterations;  // the last step's: its last assembly needs no tangent
   if (options_.verbose && options_.log) {
@@ -163,7 +180,7 @@ void MpmRun::newton_node() {
   std::string hint;
   const bool suspect = !report.converged || solver_.min_rcond() < LinearSolve::kNearlySingular;
   const int nen = m_.grid.stride;
-  if (suspect && (nen == 4 || nen == 9)) {
+  if (suspect && D == 2 && (nen == 4 || nen == 9)) {  // a tet4 cell's gradients are constant: one point integrates it
     Index sparse = 0;
     for (Index c : m_.activity.active_cells) sparse += m_.particle_loc.count_in(c) < nen;
     if (sparse > 0) {
@@ -179,18 +196,21 @@ void MpmRun::newton_node() {
   if (!report.converged && !hint.empty()) status_.failure += "; " + hint;
 }
 
-void MpmRun::probes_node() {
-  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView{m_.grid, m_.activity, m_.grid_nodes},
+template <int D>
+void MpmRunT<D>::probes_node() {
+  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView<D>{m_.grid, m_.activity, m_.grid_nodes},
                            m_.system, m_.bc, status_.step_iterations, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 
-bool MpmRun::frame_due() const {
+template <int D>
+bool MpmRunT<D>::frame_due() const {
   if (!options_.write_files || scene_.output.every == 0) return false;
   return ctx_.step % scene_.output.every == 0 || ctx_.step == scene_.time.steps;
 }
 
-void MpmRun::output_node() {
+template <int D>
+void MpmRunT<D>::output_node() {
   last_frame_time_ = ctx_.t;
   auto particles = std::make_shared<Frame>();
   auto grid = std::make_shared<Frame>();
@@ -208,7 +228,8 @@ void MpmRun::output_node() {
   });
 }
 
-void MpmRun::describe(std::ostream& os) const {
+template <int D>
+void MpmRunT<D>::describe(std::ostream& os) const {
   const BodySpec& body = scene_.bodies[std::size_t(mpm_body_index(scene_))];
   os << "scene '" << scene_.scene.name << "' (" << scene_.file << "), method " << method_name(scene_.scene.method) << ", element "
      << formulation_name(body.element);
@@ -263,15 +284,16 @@ void MpmRun::describe(std::ostream& os) const {
 
 // a_0 = M^-1 (f_ext - f_int) on the active grid at t = 0 (lumped mass), interpolated to the particles:
 // a load applied from t = 0 on is then integrated exactly by Newmark (free fall: 1/2 g t^2).
-void MpmRun::initial_acceleration() {
-  MpmNewtonProblem problem(ctx_, m_, solver_, timers_, false);
+template <int D>
+void MpmRunT<D>::initial_acceleration() {
+  MpmNewtonProblemT<D> problem(ctx_, m_, solver_, timers_, false);
   problem.assemble(false);
   const int pn = m_.system.dofs.per_node;
-  Nodes<2>& g = m_.grid_nodes;
+  Nodes<D>& g = m_.grid_nodes;
   for (Index i = 0; i < g.size(); ++i) {
     g.u[i].setZero();
     if (!(g.lumped_mass[i] > 0.0)) continue;
-    for (int d = 0; d < 2; ++d)
+    for (int d = 0; d < D; ++d)
       g.a[i][d] = m_.system.dofs.kind[std::size_t(i * pn + d)] == DofKind::free ? -m_.system.residual_full[i * pn + d] / g.lumped_mass[i] : 0.0;
   }
   for (Index p = 0; p < m_.particles.X.size(); ++p) {
@@ -282,7 +304,8 @@ void MpmRun::initial_acceleration() {
   }
 }
 
-void MpmRun::write_initial_state() {
+template <int D>
+void MpmRunT<D>::write_initial_state() {
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
   if (!m_.particle_newmark) project_to_grid(ctx_, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
   apply_grid_loads(ctx_, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points, m_.traction_loc, m_.bc);
@@ -291,7 +314,7 @@ void MpmRun::write_initial_state() {
       // The particles start with F = I, stress free: f_int = 0, and a body that touches no wall has the
       // equilibrium acceleration of its body force, particle by particle (free fall: exactly g).
       for (Index p = 0; p < m_.particles.X.size(); ++p)
-        m_.particles.a[p] = m_.bc.particle_body_force.empty() ? Vec2::Zero() : m_.bc.particle_body_force[std::size_t(p)];
+        m_.particles.a[p] = m_.bc.particle_body_force.empty() ? Vec<D>::Zero() : m_.bc.particle_body_force[std::size_t(p)];
     } else {
       initial_acceleration();
     }
@@ -302,7 +325,8 @@ void MpmRun::write_initial_state() {
   if (options_.write_files && scene_.output.every > 0) output_node();
 }
 
-RunSummary MpmRun::run() {
+template <int D>
+RunSummary MpmRunT<D>::run() {
   const auto start = std::chrono::steady_clock::now();
   RunSummary summary;
   summary.steps_requested = scene_.time.steps;
@@ -344,5 +368,9 @@ RunSummary MpmRun::run() {
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
+
+
+template class MpmRunT<2>;
+template class MpmRunT<3>;
 
 }  // namespace loom

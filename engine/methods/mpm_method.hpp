@@ -33,17 +33,19 @@ namespace loom {
 
 struct CheckpointHeader;
 
-class MpmRun final : public MethodRun {
+// D = 2 or 3 (3D: tet4 grids, the grid Newmark scheme; engine/methods/mpm_model.hpp).
+template <int D>
+class MpmRunT final : public MethodRun {
  public:
-  MpmRun(const SceneSpec& scene, const RunOptions& options);
-  ~MpmRun() override;
+  MpmRunT(const SceneSpec& scene, const RunOptions& options);
+  ~MpmRunT() override;
 
   void describe(std::ostream& os) const override;
   RunSummary run() override;
   const Timers& timers() const override { return timers_; }
 
   // Read access for tests, tools and benchmarks.
-  const MpmModel& model() const { return m_; }
+  const MpmModelT<D>& model() const { return m_; }
   const std::vector<double>& probe_values() const override { return probe_values_; }
   const StepGraph& graph() const { return *graph_; }
   const LinearSolve& solver() const { return solver_; }
@@ -64,7 +66,7 @@ class MpmRun final : public MethodRun {
   bool frame_due() const;
   StopCondition stop_;  // time.stop_when
 
-  MpmModel m_;
+  MpmModelT<D> m_;
   const SceneSpec& scene_;
   RunOptions options_;
   StepContext ctx_;
@@ -81,5 +83,7 @@ class MpmRun final : public MethodRun {
   double last_frame_time_ = -1.0;
   bool warned_singular_ = false;
 };
+
+using MpmRun = MpmRunT<2>;
 
 }  // namespace loom

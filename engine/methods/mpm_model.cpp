@@ -19,8 +19,21 @@
 namespace loom {
 namespace {
 
+// A node's position as text, for messages.
+template <int D>
+std::string point_text(const Vec<D>& X, const char* open = "(", const char* close = ")") {
+  std::ostringstream os;
+  os << open << X.x() << ", " << X.y();
+  if constexpr (D == 3) os << ", " << X.z();
+  os << close;
+  return os.str();
+}
+
+}  // namespace
+
 // Prescribed dofs on the grid nodes of each [[boundary]] region; body-force expressions per body.
-void build_grid_conditions(const SceneSpec& scene, const Nodes<2>& nodes, const GridLayout& layout, BoundaryConditions<2>& bc) {
+template <int D>
+void build_grid_conditions(const SceneSpec& scene, const Nodes<D>& nodes, const GridLayoutT<D>& layout, BoundaryConditions<D>& bc) {
   const int pn = bc.per_node;
   const double tol = 1e-9 * std::max(1.0, layout.width());
   std::map<Index, std::size_t> prescribed_at;
@@ -28,39 +41,43 @@ void build_grid_conditions(const SceneSpec& scene, const Nodes<2>& nodes, const 
     const BoundarySpec& spec = scene.boundaries[k];
     std::vector<Index> selected;
     for (Index i = 0; i < nodes.size(); ++i) {
-      const Vec2& X = nodes.X[i];
-      if (X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol && X.y() >= spec.box_min.y() - tol &&
-          X.y() <= spec.box_max.y() + tol)
-        selected.push_back(i);
+      const Vec<D>& X = nodes.X[i];
+      bool in = X.x() >= spec.box_min.x() - tol && X.x() <= spec.box_max.x() + tol && X.y() >= spec.box_min.y() - tol &&
+                X.y() <= spec.box_max.y() + tol;
+      if constexpr (D == 3) in = in && X.z() >= spec.box_min_z - tol && X.z() <= spec.box_max_z + tol;
+      if (in) selected.push_back(i);
     }
     bc.boundary_names.push_back(spec.name);
     bc.boundary_nodes.push_back(selected);
     bc.boundary_prescribed.emplace_back();
-    const std::optional<ExpressionSpec>* comps[3] = {&spec.displacement.x, &spec.displacement.y, &spec.pressure};
-    const bool prescribes = spec.displacement.x || spec.displacement.y || spec.pressure;
+    std::array<const std::optional<ExpressionSpec>*, D + 1> comps;
+    for (int d = 0; d < D; ++d) comps[std::size_t(d)] = &spec.displacement[d];
+    comps[D] = &spec.pressure;
+    bool prescribes = false;
+    for (const auto* c : comps) prescribes = prescribes || c->has_value();
     LOOM_CHECK(!prescribes || !selected.empty(), InputError,
                spec.region_where << ": error: boundary[" << k << "].region.box: method mpm prescribes values on grid nodes, and the region "
-                                 << "holds none (the grid spans [" << layout.lo.x() << ", " << layout.lo.y() << "] to [" << layout.hi.x()
-                                 << ", " << layout.hi.y() << "])");
-    for (int d = 0; d < 3; ++d) {
+                                 << "holds none (the grid spans " << point_text<D>(layout.lo, "[", "]") << " to " << point_text<D>(layout.hi, "[", "]") << ")");
+    for (int d = 0; d < D + 1; ++d) {
       if (!*comps[d]) continue;
       const Index expr = add_expression(bc, **comps[d]);
       const Expression& g = bc.expressions[std::size_t(expr)];
       for (Index i : selected) {
         // The particles start undisplaced: a displacement must vanish at t = 0 where the grid applies it.
-        const double g0 = d < 2 ? g(0.0, nodes.X[i].x(), nodes.X[i].y()) : 0.0;
+        const Vec<D>& X = nodes.X[i];
+        const double g0 = d < D ? (D == 3 ? g(0.0, X.x(), X.y(), X[D - 1]) : g(0.0, X.x(), X.y())) : 0.0;
         LOOM_CHECK(g0 == 0.0, InputError,
                    (*comps[d])->where << ": error: " << (*comps[d])->key << ": method mpm moves the grid nodes by the increments of the "
                                       << "prescribed displacement, which must vanish at t = 0 (the particles start undisplaced); it is "
-                                      << g0 << " at grid node (" << nodes.X[i].x() << ", " << nodes.X[i].y() << "): ramp it, e.g. \"t * ("
+                                      << g0 << " at grid node " << point_text<D>(X) << ": ramp it, e.g. \"t * ("
                                       << (*comps[d])->text << ")\"");
         const Index dof = i * pn + d;
         auto it = prescribed_at.find(dof);
         if (it != prescribed_at.end()) {
           const std::string& other = bc.expressions[std::size_t(bc.prescribed[it->second].expression)].text();
           LOOM_CHECK(other == g.text(), InputError,
-                     (*comps[d])->where << ": error: " << (*comps[d])->key << ": grid node (" << nodes.X[i].x() << ", " << nodes.X[i].y()
-                                        << ") is also prescribed by another boundary with \"" << other << "\"");
+                     (*comps[d])->where << ": error: " << (*comps[d])->key << ": grid node " << point_text<D>(nodes.X[i])
+                                        << " is also prescribed by another boundary with \"" << other << "\"");
           continue;
         }
         prescribed_at[dof] = bc.prescribed.size();
@@ -70,15 +87,20 @@ void build_grid_conditions(const SceneSpec& scene, const Nodes<2>& nodes, const 
     }
   }
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-    std::array<Index, 2> expr{kNoIndex, kNoIndex};
-    const auto x = combine(scene.body_force.x, scene.bodies[b].body_force.x);
-    const auto y = combine(scene.body_force.y, scene.bodies[b].body_force.y);
-    if (x) expr[0] = add_expression(bc, *x);
-    if (y) expr[1] = add_expression(bc, *y);
-    if (x || y) bc.has_loads = true;
+    std::array<Index, D> expr;
+    expr.fill(kNoIndex);
+    for (int d = 0; d < D; ++d) {
+      const auto e = combine(scene.body_force[d], scene.bodies[b].body_force[d]);
+      if (e) expr[std::size_t(d)] = add_expression(bc, *e), bc.has_loads = true;
+    }
     bc.body_force.push_back(expr);
   }
 }
+
+template void build_grid_conditions<2>(const SceneSpec&, const Nodes<2>&, const GridLayoutT<2>&, BoundaryConditions<2>&);
+template void build_grid_conditions<3>(const SceneSpec&, const Nodes<3>&, const GridLayoutT<3>&, BoundaryConditions<3>&);
+
+namespace {
 
 RectangleSpec rectangle_of(const MeshSpec& m) {
   RectangleSpec r;
@@ -88,8 +110,57 @@ RectangleSpec rectangle_of(const MeshSpec& m) {
 
 }  // namespace
 
+// The columns the scene needs (both dimensions: the 2D-only ones stay unused in 3D).
+template <int D>
+void MpmModelT<D>::set_columns(const BodySpec& body) {
+  coupled = scene.scene.method == Method::mpm_fem;
+  dynamic = scene.time.integrator == Integrator::newmark;
+  mixed = body.element == Formulation::p1p1_up;
+  osgs = mixed && body.stabilisation == Stabilisation::osgs;
+  particle_newmark = scene.mpm.scheme == MpmScheme::particle_newmark;
+  grid_nodes.u_n.use(coupled);  // the grid starts every step undeformed (mpm_fem: at its reference): u is the step's displacement
+  grid_nodes.lumped_mass.use(!particle_newmark);  // particle Newmark: the grid carries no mass, velocity or acceleration
+  for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic && !particle_newmark);
+  if (coupled) grid_nodes.v.use(), grid_nodes.a.use();  // the FEM nodes' Newmark state
+  grid_nodes.p.use(mixed);
+  grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs), grid_nodes.lumped_volume.use(osgs);
+  for (auto* c : {&particles.X, &particles.u}) c->use();
+  particles.mass.use(), particles.volume.use(), particles.F.use(), particles.body.use();
+  particles.v.use(dynamic), particles.a.use(dynamic);
+  particles.pressure.use(mixed);
+  particles.proj_u.use(osgs), particles.proj_p.use(osgs);
+  particle_loc.F.use();
+  particle_loc.xi.use(scene.grid.quad9);
+  particle_loc.N.use(!scene.grid.quad9);
+  particle_loc.receding.use(particle_newmark && scene.mpm.receding_contact > 0.0);
+  traction_points.X.use(), traction_points.u.use(), traction_points.volume.use(), traction_points.body.use();
+  traction_loc.entity = "traction point";
+  probe_points.X.use(), probe_points.u.use();
+  probe_loc.entity = "probe point";
+}
+
+// UMFPACK for the mixed system and receding contact (unsymmetric, indefinite), the scene's choice otherwise.
+template <int D>
+void MpmModelT<D>::choose_linear_solver() {
+  const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
+  linear_solver = mixed || unsymmetric ? LinearSolverKind::umfpack : scene.solver.linear;
+  const char* chosen = scene.solver.linear == LinearSolverKind::cg ? "cg" : "cholmod";
+  LOOM_CHECK(!(unsymmetric && needs_spd(scene.solver.linear)), InputError,
+             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
+                        << "makes it unsymmetric; use umfpack or auto");
+  LOOM_CHECK(!(mixed && needs_spd(scene.solver.linear)), InputError,
+             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric positive definite tangent, and the mixed u-p system "
+                        << "(p1p1_up) is indefinite and, stabilised, unsymmetric; use umfpack or auto");
+}
+
+template void MpmModelT<2>::set_columns(const BodySpec&);
+template void MpmModelT<3>::set_columns(const BodySpec&);
+template void MpmModelT<2>::choose_linear_solver();
+template void MpmModelT<3>::choose_linear_solver();
+
 // Soft-stiffness outside nodes, wall sides, and the particles that point probes follow (the nearest to `at`).
-void MpmModel::build_particle_newmark_data() {
+template <>
+void MpmModelT<2>::build_particle_newmark_data() {
   outside_node.assign(std::size_t(grid_nodes.size()), 0);
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k)
     if (scene.boundaries[k].outside)
@@ -110,7 +181,8 @@ void MpmModel::build_particle_newmark_data() {
 }
 
 // Method mpm_fem: the grid and the FEM bodies' rectangles, refined alike, as one mesh with shared nodes.
-void MpmModel::build_coupled_model_grid() {
+template <>
+void MpmModelT<2>::build_coupled_model_grid() {
   const MeshSpec& gm = scene.grid.mesh;
   const RectangleSpec rect = rectangle_of(gm);
   std::vector<FemBlock> blocks;
@@ -137,35 +209,12 @@ void MpmModel::build_coupled_model_grid() {
   activity.always_active_from = coupled_mesh.grid_cells;
 }
 
-MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
+template <>
+MpmModelT<2>::MpmModelT(const SceneSpec& spec) : scene(spec) {
   check_memory(scene);
   const BodySpec& body = scene.bodies.at(std::size_t(mpm_body_index(scene)));
-  coupled = scene.scene.method == Method::mpm_fem;
-  dynamic = scene.time.integrator == Integrator::newmark;
-  mixed = body.element == Formulation::p1p1_up;
-  osgs = mixed && body.stabilisation == Stabilisation::osgs;
-  particle_newmark = scene.mpm.scheme == MpmScheme::particle_newmark;
-
   // 1. Columns the scene needs.
-  grid_nodes.u_n.use(coupled);  // the grid starts every step undeformed (mpm_fem: at its reference): u is the step's displacement
-  grid_nodes.lumped_mass.use(!particle_newmark);  // particle Newmark: the grid carries no mass, velocity or acceleration
-  for (auto* c : {&grid_nodes.v_n, &grid_nodes.a_n, &grid_nodes.v, &grid_nodes.a}) c->use(dynamic && !particle_newmark);
-  if (coupled) grid_nodes.v.use(), grid_nodes.a.use();  // the FEM nodes' Newmark state
-  grid_nodes.p.use(mixed);
-  grid_nodes.proj_u.use(osgs), grid_nodes.proj_p.use(osgs), grid_nodes.lumped_volume.use(osgs);
-  for (auto* c : {&particles.X, &particles.u}) c->use();
-  particles.mass.use(), particles.volume.use(), particles.F.use(), particles.body.use();
-  particles.v.use(dynamic), particles.a.use(dynamic);
-  particles.pressure.use(mixed);
-  particles.proj_u.use(osgs), particles.proj_p.use(osgs);
-  particle_loc.F.use();
-  particle_loc.xi.use(scene.grid.quad9);
-  particle_loc.N.use(!scene.grid.quad9);
-  particle_loc.receding.use(particle_newmark && scene.mpm.receding_contact > 0.0);
-  traction_points.X.use(), traction_points.u.use(), traction_points.volume.use(), traction_points.body.use();
-  traction_loc.entity = "traction point";
-  probe_points.X.use(), probe_points.u.use();
-  probe_loc.entity = "probe point";
+  set_columns(body);
 
   // 2. Grid, particles, traction points.
   const MeshSpec& gm = scene.grid.mesh;
@@ -206,18 +255,7 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
   for (Index k = 0; k < probe_points.X.size(); ++k) probe_points.X[k] = tracers[std::size_t(k)];
   build_grid_conditions(scene, grid_nodes, layout, bc);
   if (coupled) build_reset_field(grid, coupled_mesh.grid_cells, grid_nodes, coupled_mesh.fem_node, bc, reset);
-  bc.increments = true;
-  bc.target = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
-  bc.external = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
-  const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
-  linear_solver = mixed || unsymmetric ? LinearSolverKind::umfpack : scene.solver.linear;
-  const char* chosen = scene.solver.linear == LinearSolverKind::cg ? "cg" : "cholmod";
-  LOOM_CHECK(!(unsymmetric && needs_spd(scene.solver.linear)), InputError,
-             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
-                        << "makes it unsymmetric; use umfpack or auto");
-  LOOM_CHECK(!(mixed && needs_spd(scene.solver.linear)), InputError,
-             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric positive definite tangent, and the mixed u-p system "
-                        << "(p1p1_up) is indefinite and, stabilised, unsymmetric; use umfpack or auto");
+  finish_conditions();
 
   // 3. Where the points are, and the active grid.
   StepContext ctx;
@@ -240,14 +278,30 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
     flag_soft_cells(ctx, grid, outside_node, activity);
     return;
   }
-  for (std::size_t k = 0, tracer = 0; k < scene.probes.size(); ++k) {  // a probe outside the grid: its own key
+  locate_probe_points(ctx);
+  activate_grid(ctx, grid, particle_loc, bc, activity, system);
+}
+
+// Incremental prescribed values, zero targets and loads; the linear solver for the system.
+template <int D>
+void MpmModelT<D>::finish_conditions() {
+  bc.increments = true;
+  bc.target = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
+  bc.external = Eigen::VectorXd::Zero(grid_nodes.size() * bc.per_node);
+  choose_linear_solver();
+}
+
+// A point probe outside the grid is an error of its own key; then the tracers are located.
+template <int D>
+void MpmModelT<D>::locate_probe_points(const StepContext& ctx) {
+  for (std::size_t k = 0, tracer = 0; k < scene.probes.size(); ++k) {
     if (scene.probes[k].kind != ProbeKind::point) continue;
-    const Vec2 at = probe_points.X[Index(tracer++)];
+    const Vec<D> at = probe_points.X[Index(tracer++)];
     Vec4 N;
     if (find_cell(layout, grid, grid_nodes, at, kNoIndex, N) == kNoIndex) {
       std::ostringstream os;
-      os << scene.probes[k].where << ": error: probe[" << k << "].at: (" << at.x() << ", " << at.y()
-         << ") is outside the background grid (a point probe follows the material point at `at`)";
+      os << scene.probes[k].where << ": error: probe[" << k << "].at: " << point_text<D>(at)
+         << " is outside the background grid (a point probe follows the material point at `at`)";
       throw InputError(os.str());
     }
   }
@@ -255,10 +309,14 @@ MpmModel::MpmModel(const SceneSpec& spec) : scene(spec) {
     locate_points(ctx, layout, grid, grid_nodes, probe_points, probe_loc);
   } catch (const RunError& e) {
     std::ostringstream os;
-    os << gm.where << ": error: grid: a probe point is outside the background grid at t = 0: " << e.what();
+    os << scene.grid.mesh.where << ": error: grid: a probe point is outside the background grid at t = 0: " << e.what();
     throw InputError(os.str());
   }
-  activate_grid(ctx, grid, particle_loc, bc, activity, system);
 }
+
+template void MpmModelT<2>::finish_conditions();
+template void MpmModelT<3>::finish_conditions();
+template void MpmModelT<2>::locate_probe_points(const StepContext&);
+template void MpmModelT<3>::locate_probe_points(const StepContext&);
 
 }  // namespace loom

@@ -3,6 +3,9 @@
 // material points and the traction points with their locations, materials, the grid's boundary
 // conditions, and the Newton system. The particles are located and the grid activated once here, so that
 // a body that does not fit in the grid is a scene error (exit 2) and `loom info` shows real sizes.
+// D = 2: triangle, quadrilateral and quad9 grids, every scheme (engine/methods/mpm_model.cpp); D = 3: tet4 grids,
+// the grid Newmark scheme, method mpm (engine/methods/mpm_model_3d.cpp). The mpm_fem and particle-Newmark
+// members are 2D and stay empty in 3D.
 #pragma once
 
 #include <vector>
@@ -23,27 +26,30 @@
 
 namespace loom {
 
-struct MpmModel {
+struct StepContext;
+
+template <int D>
+struct MpmModelT {
   // Throws InputError for scene errors that need the grid or the particles.
-  explicit MpmModel(const SceneSpec& scene);
+  explicit MpmModelT(const SceneSpec& scene);
 
   SceneSpec scene;
   // Background grid
-  Nodes<2> grid_nodes;
+  Nodes<D> grid_nodes;
   Cells grid;
-  GridLayout layout;
+  GridLayoutT<D> layout;
   GridActivity activity;
-  // Material points and the points that carry boundary tractions
-  Points<2> particles;
+  // Material points and the points that carry boundary tractions (2D)
+  Points<D> particles;
   PointLocations particle_loc;
-  Points<2> traction_points;
+  Points<D> traction_points;
   PointLocations traction_loc;
   // Point probes follow massless tracer points that move with the grid like the traction points.
-  Points<2> probe_points;
+  Points<D> probe_points;
   PointLocations probe_loc;
 
   std::vector<BodyMaterial> materials;
-  BoundaryConditions<2> bc;  // on the grid's dofs
+  BoundaryConditions<D> bc;  // on the grid's dofs
   LinearSystem system;
   // Particle Newmark (seed 004): the boundary nodes that lower the soft-stiffness flags, each cell's wall
   // sides (receding contact), and the particle each point probe follows.
@@ -59,13 +65,29 @@ struct MpmModel {
 
   bool dynamic = false;  // newmark
   bool particle_newmark = false;  // mpm.scheme
-  bool mixed = false;    // p1p1_up: three dofs per grid node
+  bool mixed = false;    // p1p1_up: D + 1 dofs per grid node
   bool osgs = false;
   LinearSolverKind linear_solver = LinearSolverKind::automatic;
 
  private:
   void build_particle_newmark_data();
   void build_coupled_model_grid();
+  void set_columns(const BodySpec& body);
+  void choose_linear_solver();
+  void finish_conditions();
+  void locate_probe_points(const StepContext& ctx);
 };
+
+using MpmModel = MpmModelT<2>;
+
+// Prescribed dofs on the grid nodes of each [[boundary]] box (displacements, and the pressure of p1p1_up);
+// body-force expressions per body. InputError for a prescribing region without grid nodes, or a
+// displacement that does not vanish at t = 0.
+template <int D>
+void build_grid_conditions(const SceneSpec& scene, const Nodes<D>& nodes, const GridLayoutT<D>& layout, BoundaryConditions<D>& bc);
+template <>
+MpmModelT<2>::MpmModelT(const SceneSpec& scene);
+template <>
+MpmModelT<3>::MpmModelT(const SceneSpec& scene);
 
 }  // namespace loom

@@ -20,9 +20,10 @@
 
 namespace loom {
 
-class MpmNewtonProblem final : public NonlinearProblem {
+template <int D>
+class MpmNewtonProblemT final : public NonlinearProblem {
  public:
-  MpmNewtonProblem(const StepContext& ctx, MpmModel& m, LinearSolve& solver, Timers& timers, bool inertia = true)
+  MpmNewtonProblemT(const StepContext& ctx, MpmModelT<D>& m, LinearSolve& solver, Timers& timers, bool inertia = true)
       : ctx_(ctx), m_(m), solver_(solver), timers_(timers), inertia_(inertia) {}
 
   bool assemble(bool with_tangent) override {
@@ -31,10 +32,11 @@ class MpmNewtonProblem final : public NonlinearProblem {
       project_residuals(ctx_, m_.materials, m_.grid, m_.activity, m_.particles, m_.particle_loc, m_.bc, m_.grid_nodes);
     }
     assembled_ = true;
-    if (m_.particle_newmark)
-      return assemble_particle_newmark(ctx_, with_tangent, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc,
-                                       m_.particle_loc, m_.system, &timers_)
-                 .inverted_cells == 0;
+    if constexpr (D == 2)
+      if (m_.particle_newmark)
+        return assemble_particle_newmark(ctx_, with_tangent, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc,
+                                         m_.particle_loc, m_.system, &timers_)
+                   .inverted_cells == 0;
     const GridAssemblyOptions options{with_tangent, inertia_};
     return assemble_grid_system(ctx_, options, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particles, m_.bc, m_.particle_loc,
                                 m_.system)
@@ -67,7 +69,7 @@ class MpmNewtonProblem final : public NonlinearProblem {
     for (const auto& p : m_.bc.prescribed) {
       if (m_.system.dofs.kind[std::size_t(p.dof)] != DofKind::prescribed) continue;  // inactive node
       const int comp = p.dof % pn;
-      const double target = m_.bc.target[p.dof], value = comp < 2 ? m_.grid_nodes.u[p.node][comp] : m_.grid_nodes.p[p.node];
+      const double target = m_.bc.target[p.dof], value = comp < D ? m_.grid_nodes.u[p.node][comp] : m_.grid_nodes.p[p.node];
       if (std::abs(target - value) > 1e-13 * (std::abs(target) + std::abs(value)) + 1e-300) return true;
     }
     return false;
@@ -86,7 +88,7 @@ class MpmNewtonProblem final : public NonlinearProblem {
   }
 
   const StepContext& ctx_;
-  MpmModel& m_;
+  MpmModelT<D>& m_;
   LinearSolve& solver_;
   Timers& timers_;
   bool inertia_;
@@ -94,5 +96,7 @@ class MpmNewtonProblem final : public NonlinearProblem {
   AndersonMixing anderson_;
   double applied_ = 0.0;  // multiple of the last increment added to the iterate since the last solve
 };
+
+using MpmNewtonProblem = MpmNewtonProblemT<2>;
 
 }  // namespace loom

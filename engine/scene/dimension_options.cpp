@@ -2,9 +2,15 @@
 
 namespace loom {
 
-void check_element_dimension(int dimension, const std::string& element, const TableReader& body) {
+void check_element_dimension(int dimension, Method method, const std::string& element, const TableReader& body) {
   if (dimension == 2 && element == "tet10")
     body.error("element", "tet10 is a tetrahedron: it needs scene.dimension = 3 (the quadratic triangle is tri6)");
+  if (dimension == 3 && method == Method::mpm) {
+    if (element != "p1" && element != "p1p1_up")
+      body.error("element", "a 3D mpm grid is linear tetrahedra: element p1 (displacement) or p1p1_up (mixed u-p); " + element +
+                                " is not an element of method mpm in 3D");
+    return;
+  }
   if (dimension == 3 && element != "p1" && element != "tet10" && element != "p1p1_uphi")
     body.error("element", "element " + element + " is two-dimensional; in 3D (scene.dimension = 3) the elements are p1 (linear "
                           "tetrahedron), tet10 (quadratic tetrahedron) and p1p1_uphi (mixed linear tetrahedron)" +
@@ -46,8 +52,25 @@ void read_mesh_dimension(int dimension, const TableReader& mesh, MeshSpec& m) {
 void check_dimension_support(const SceneSpec& s, const TableReader& root) {
   if (s.scene.dimension != 3) return;
   const auto scene = root.table("scene");
-  if (s.scene.method != Method::fem)
-    scene.error("method", std::string("scene.dimension = 3 is implemented for method fem; method ") + method_name(s.scene.method) + " is two-dimensional");
+  if (s.scene.method != Method::fem && s.scene.method != Method::mpm)
+    scene.error("method", std::string("scene.dimension = 3 is implemented for methods fem and mpm; method ") + method_name(s.scene.method) +
+                              " is two-dimensional");
+  if (s.scene.method == Method::mpm) {
+    const auto grid = root.table("grid");
+    if (grid.has("cells")) grid.error("cells", "a 3D grid is linear tetrahedra (tet4): leave cells out");
+    if (grid.has("ghost_penalty")) grid.error("ghost_penalty", "the face ghost penalty belongs to 2D quadrilateral grids");
+    const auto mpm = root.table("mpm");
+    if (mpm.string("scheme") == "particle_newmark")  // read_mpm_options, which sets s.mpm.scheme, runs after this
+      mpm.error("scheme", "scheme = \"particle_newmark\" is two-dimensional; 3D runs the grid Newmark scheme of seed 003");
+    const auto boundaries = root.array("boundary");
+    for (std::size_t k = 0; k < boundaries.size() && k < s.boundaries.size(); ++k)
+      if (s.boundaries[k].has_traction)
+        boundaries[k].error("traction", "tractions on a 3D mpm body are not implemented (traction points on boundary faces); use body forces");
+    const auto bodies = root.array("body");
+    for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
+      if (s.bodies[b].particles.kind != ParticleGenerator::none)
+        bodies[b].error("particles", "generated particle sets are two-dimensional; a 3D mpm body samples its tetrahedral mesh (particles_per_cell)");
+  }
   for (const char* t : {"wall", "inlet"})
     if (root.has(t)) root.error(t, std::string("[[") + t + "]] is two-dimensional (scene.dimension = 3)");
   const auto probes = root.array("probe");

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/mesh/tetrahedron_rules.hpp"
 #include "engine/mesh/triangle_rules.hpp"
 #include "engine/scene/loader_support.hpp"
 
@@ -119,7 +120,15 @@ void read_mpm_options(SceneSpec& s, const TableReader& root) {
 
 void read_mpm_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   b.particles_per_cell = int(t.integer("particles_per_cell"));
-  if (t.has("particles_per_cell") && !has_triangle_rule(b.particles_per_cell)) {
+  if (s.scene.dimension == 3) {
+    if (!t.has("particles_per_cell")) b.particles_per_cell = 4;
+    const int n = b.particles_per_cell;
+    if (t.has("particles_per_cell") && !has_tetrahedron_rule(n)) {
+      std::string sizes;
+      for (int k : tetrahedron_rule_sizes()) sizes += (sizes.empty() ? "" : ", ") + std::to_string(k);
+      t.error("particles_per_cell", "no tetrahedron rule with " + std::to_string(n) + " points (available: " + sizes + ")");
+    }
+  } else if (t.has("particles_per_cell") && !has_triangle_rule(b.particles_per_cell)) {
     std::string sizes;
     for (int n : triangle_rule_sizes()) sizes += (sizes.empty() ? "" : ", ") + std::to_string(n);
     t.error("particles_per_cell", "no triangle rule with " + std::to_string(b.particles_per_cell) + " points (available: " + sizes + ")");

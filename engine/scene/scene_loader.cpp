@@ -75,7 +75,9 @@ class Loader {
     read_pfem_options(s, root_);
     const auto grid = root_.table("grid");
     s.grid.present = grid.present();
-    if (grid.present()) read_grid(grid, s.grid);
+    if (grid.present()) read_grid(grid, s.grid), read_mesh_dimension(s.scene.dimension, grid, s.grid.mesh);
+    if (grid.present() && s.scene.dimension == 2 && grid.has("file"))
+      grid.error("file", "a background grid from a mesh file is three-dimensional (scene.dimension = 3); in 2D use a generator");
     read_output(s);
     check_mass(s);
     check_method_support(s, root_, diag_);
@@ -240,7 +242,7 @@ class Loader {
                                             {"p1p1_up", Formulation::p1p1_up}, {"es_up", Formulation::es_up},
                                             {"es_u", Formulation::es_u}, {"fem_up", Formulation::fem_up}, {"fem_u", Formulation::fem_u},
                                             {"quad9", Formulation::quad9}, {"tet10", Formulation::tri6}});
-    check_element_dimension(s.scene.dimension, element, t);
+    check_element_dimension(s.scene.dimension, s.scene.method, element, t);
     read_mpm_body(s, t, b);
     read_smoothed_body(s, t, b);
     if (b.element == Formulation::p1p1_uphi && b.material != kNoIndex &&

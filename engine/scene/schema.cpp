@@ -132,7 +132,8 @@ std::vector<KeySpec> build_schema() {
                   "response.").by_default("\"K/10\""));
   s.push_back(key("body[].particles_per_cell", K::integer,
                   "Method mpm: material points generated in each cell of the body mesh at the points of a symmetric triangle rule "
-                  "(1, 3, 6, 12, 16 or 33; Dunavant), volume = rule weight x cell area, mass = density x volume.")
+                  "(1, 3, 6, 12, 16 or 33; Dunavant), volume = rule weight x cell area, mass = density x volume. 3D: a symmetric "
+                  "tetrahedron rule of 1, 4, 14 or 24 points (degrees 1, 2, 5, 6), default 4.")
                   .by_default("3").at_least(1).at_most(33));
   s.push_back(key("body[].stabilisation", K::choice,
                   "p1p1_up: none (Galerkin, unstable for nu -> 0.5), ppp (polynomial pressure projection, [Bochev 2006], factor "
@@ -215,11 +216,16 @@ std::vector<KeySpec> build_schema() {
                   "gamma_0 mu h, and of p, gamma_0 h^3 / (2 mu)); it steadies nodes of nearly empty cells, which quad4 grids "
                   "need at the body's boundary (docs/mpm/README.md §6). 0: off. Default: 0.1 for quad4 cells, 0 for tri3.")
                   .at_least(0));
-  s.push_back(key("grid.generator", K::choice, "rectangle (located by arithmetic unless shifted or distorted) or cooks_membrane (located by walking).")
-                  .one_of({"rectangle", "cooks_membrane"}).require());
+  s.push_back(key("grid.generator", K::choice,
+                  "rectangle (located by arithmetic unless shifted or distorted) or cooks_membrane (located by walking). 3D: box (origin, "
+                  "size, divisions: cubes each cut into six Kuhn tetrahedra, located by arithmetic unless distorted).")
+                  .one_of({"rectangle", "cooks_membrane", "box"}).require_unless("file"));
+  s.push_back(key("grid.file", K::string,
+                  "3D: a gmsh mesh of 4- or 10-node tetrahedra (their corners make the tet4 grid), relative to the scene file; "
+                  "located by walking from each point's last cell, with a bucket index to start."));
   s.push_back(key("grid.origin", K::vec2, "Lower-left corner (rectangle).").by_default("[0.0, 0.0]"));
   s.push_back(key("grid.size", K::vec2, "Width and height (rectangle; required there)."));
-  s.push_back(key("grid.divisions", K::ivec2, "Cell edges along x and y.").require());
+  s.push_back(key("grid.divisions", K::ivec2, "Cell edges along x and y (3D box: and z).").require_unless("file"));
   s.push_back(key("grid.pattern", K::choice, "Triangulation of the squares (tri3): right, alternating, or shifted.")
                   .one_of({"right", "alternating", "shifted"}).by_default("right"));
   s.push_back(key("grid.scale", K::real, "Factor applied to all coordinates after generation.").by_default("1.0").above(0));

@@ -88,6 +88,7 @@ struct Cells {
   Column<Index> neighbour;  // one per side (side_corners): the cell across it, kNoIndex on the boundary
   Column<double> measure;   // cell area, L^2
   Column<Mat32> gradient;   // tri3: dN^a/dx of the corners (constant over the cell), 1/L; quad4, quad9: unused
+  Column<Mat43> gradient_3d;  // tet4 grids: dN^a/dx of the corners, 1/L
 
   // Cells grouped by colour: the cells of colour k are by_colour[colour_offsets[k] .. colour_offsets[k+1]).
   std::vector<Index> by_colour;
@@ -115,7 +116,8 @@ struct Cells {
 
   template <class Visit>
   void for_each_column(Visit&& f) {
-    f("nodes", nodes), f("body", body), f("colour", colour), f("neighbour", neighbour), f("measure", measure), f("gradient", gradient);
+    f("nodes", nodes), f("body", body), f("colour", colour), f("neighbour", neighbour), f("measure", measure), f("gradient", gradient),
+        f("gradient_3d", gradient_3d);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

@@ -26,7 +26,7 @@ struct Points {
   Column<Mat3> F;         // deformation gradient
   Column<double> pressure;  // mixed u-p (seed 003): p of sigma = sigma_dev + p I, positive in tension
   Column<Index> body;
-  Column<Vec2> proj_u;      // OSGS (seed 003 §5): residual projections P_u, P_p carried between steps
+  Column<V> proj_u;         // OSGS (seed 003 §5): residual projections P_u, P_p carried between steps
   Column<double> proj_p;
 
   Index size() const {

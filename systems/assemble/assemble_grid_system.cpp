@@ -1,6 +1,7 @@
 #include "systems/assemble/assemble_grid_system.hpp"
 
 #include <atomic>
+#include <cmath>
 
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/grid_shape.hpp"
@@ -13,53 +14,62 @@
 namespace loom {
 namespace {
 
+template <int D>
 struct Args {
   const StepContext& ctx;
   const GridAssemblyOptions& opt;
   const std::vector<BodyMaterial>& materials;
   const Cells& grid;
   const GridActivity& act;
-  const Nodes<2>& g;
-  const Points<2>& particles;
-  const BoundaryConditions<2>& bc;
+  const Nodes<D>& g;
+  const Points<D>& particles;
+  const BoundaryConditions<D>& bc;
   PointLocations& loc;
   LinearSystem& system;
   std::atomic<Index>& inverted;
   bool dynamic;
 };
 
-Vec2 body_force_of(const BoundaryConditions<2>& bc, Index p) {
-  return bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];
+template <int D>
+Vec<D> body_force_of(const BoundaryConditions<D>& bc, Index p) {
+  return bc.particle_body_force.empty() ? Vec<D>::Zero() : bc.particle_body_force[std::size_t(p)];
 }
 
-template <int NC>
-void assemble_displacement(const Args& x) {
+template <int NC, int D>
+void assemble_displacement(const Args<D>& x) {
   for_each_active_cell_by_colour(x.act, [&](Index c) {
-    NodalVectors<NC> du;
+    NodalVectors<NC, D> du;
     for (int a = 0; a < NC; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
-    ElementVector<NC> r = ElementVector<NC>::Zero();
-    ElementMatrix<NC> K = ElementMatrix<NC>::Zero();
+    ElementVector<NC, D> r = ElementVector<NC, D>::Zero();
+    ElementMatrix<NC, D> K = ElementMatrix<NC, D>::Zero();
     const Index entry = x.act.scatter_entry[std::size_t(c)];
-    ElementMatrix<NC>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
+    ElementMatrix<NC, D>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     const Index* pts = x.loc.points_in(c);
     for (Index k = 0; k < x.loc.count_in(c); ++k) {
       const Index p = pts[k];
       const Mat3& F_n = x.particles.F[p];
       const double Vn = x.particles.volume[p] * F_n.determinant();
-      const CornerGradients<NC> dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
-      const bool ok = std::visit([&](const auto& m) { return add_displacement_point<NC>(m, du, dN, Vn, F_n, x.loc.F[p], r, K_needed); },
+      const CornerGradients<NC, D> dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
+      const bool ok = std::visit([&](const auto& m) { return add_displacement_point<NC, D>(m, du, dN, Vn, F_n, x.loc.F[p], r, K_needed); },
                                  x.materials[std::size_t(x.particles.body[p])].model);
       if (!ok) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
     }
-    scatter_cell<2 * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    scatter_cell<D * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
   });
 }
 
-template <int NC>
-void assemble_mixed(const Args& x) {
+// The length scale of tau1 (seed 003 eq 21): h^2 = the cell's area in 2D, V^(2/3) in 3D (h = V^(1/3)).
+template <int D>
+double cell_size_squared(double measure) {
+  if constexpr (D == 2) return measure;
+  else return std::cbrt(measure) * std::cbrt(measure);
+}
+
+template <int NC, int D>
+void assemble_mixed(const Args<D>& x) {
   const double dt = x.ctx.dt;
   for_each_active_cell_by_colour(x.act, [&](Index c) {
-    UpCellValues<NC> cell;
+    UpCellValues<NC, D> cell;
     for (int a = 0; a < NC; ++a) {
       const Index i = x.grid.node(c, a);
       cell.du.row(a) = x.g.u[i].transpose();
@@ -67,11 +77,11 @@ void assemble_mixed(const Args& x) {
       if (x.dynamic) cell.a.row(a) = newmark_acceleration(x.g, i, dt).transpose();
       if (x.g.proj_u.used()) cell.proj_u.row(a) = x.g.proj_u[i].transpose(), cell.proj_p[a] = x.g.proj_p[i];
     }
-    UpVector<NC> r = UpVector<NC>::Zero();
-    UpMatrix<NC> K = UpMatrix<NC>::Zero();
+    UpVector<NC, D> r = UpVector<NC, D>::Zero();
+    UpMatrix<NC, D> K = UpMatrix<NC, D>::Zero();
     const Index entry = x.act.scatter_entry[std::size_t(c)];
-    UpMatrix<NC>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
-    PppAccumulator<NC> ppp;
+    UpMatrix<NC, D>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
+    PppAccumulator<NC, D> ppp;
     const Index* pts = x.loc.points_in(c);
     double inv_mu = 0.0;
     bool use_ppp = false;
@@ -80,7 +90,7 @@ void assemble_mixed(const Args& x) {
       const Index body = x.particles.body[p];
       const BodySpec& spec = x.ctx.scene->bodies[std::size_t(body)];
       const NeoHookeSplit& m = std::get<NeoHookeSplit>(x.materials[std::size_t(body)].model);
-      UpPoint<NC> pt;
+      UpPoint<NC, D> pt;
       pt.N = x.loc.N[p].template head<NC>();
       pt.dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
       pt.V0 = x.particles.volume[p];
@@ -91,20 +101,20 @@ void assemble_mixed(const Args& x) {
       UpStabilisation st;
       st.vms = spec.stabilisation == Stabilisation::asgs || spec.stabilisation == Stabilisation::osgs;
       st.projected = spec.stabilisation == Stabilisation::osgs;
-      st.tau1 = spec.tau_c1 * x.grid.measure[c] / (2.0 * m.mu);  // eq 21, h^2 = cell area
+      st.tau1 = spec.tau_c1 * cell_size_squared<D>(x.grid.measure[c]) / (2.0 * m.mu);  // eq 21
       st.tau2 = 2.0 * spec.tau_c2 * m.mu;
       st.c_a = x.dynamic ? newmark_stiffness(dt) : 0.0;
-      if (!add_up_point<NC>(m, st, pt, cell, x.loc.F[p], r, K_needed)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
+      if (!add_up_point<NC, D>(m, st, pt, cell, x.loc.F[p], r, K_needed)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
       if (spec.stabilisation == Stabilisation::ppp) ppp.add(pt.N, Vn), inv_mu = 1.0 / m.mu, use_ppp = true;
     }
     if (use_ppp) ppp.apply(inv_mu, cell.p, r, K_needed);
-    scatter_cell<3 * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
+    scatter_cell<(D + 1) * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);
   });
 }
 
 // Face ghost penalty (grid.ghost_penalty): residual K w and tangent K of every listed face, by colour.
 template <int NC, int PN>
-void assemble_ghost(const Args& x) {
+void assemble_ghost(const Args<2>& x) {
   const SceneSpec& scene = *x.ctx.scene;
   const double gamma_0 = scene.grid.ghost_penalty;
   const double mu = scene.materials[std::size_t(scene.bodies[std::size_t(mpm_body_index(scene))].material)].mu;
@@ -129,23 +139,28 @@ void assemble_ghost(const Args& x) {
 
 }  // namespace
 
+template <int D>
 AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOptions& opt,
                                     const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity,
-                                    const Nodes<2>& grid_nodes, const Points<2>& particles, const BoundaryConditions<2>& bc,
+                                    const Nodes<D>& grid_nodes, const Points<D>& particles, const BoundaryConditions<D>& bc,
                                     PointLocations& loc, LinearSystem& system) {
   auto& A = system.pattern.matrix;
   if (opt.tangent) std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
   system.residual_full.setZero();
   std::atomic<Index> inverted{0};
   const bool dynamic = ctx.scene->time.integrator == Integrator::newmark;
-  const Args args{ctx, opt, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, dynamic};
-  const bool quad = grid.stride == 4;
-  const bool mixed = system.dofs.per_node == 3;
-  if (mixed) quad ? assemble_mixed<4>(args) : assemble_mixed<3>(args);
-  else quad ? assemble_displacement<4>(args) : assemble_displacement<3>(args);
-  if (activity.ghost_faces.size() > 0 && system.scatter.size() > 1) {
-    if (mixed) quad ? assemble_ghost<4, 3>(args) : assemble_ghost<3, 3>(args);
-    else quad ? assemble_ghost<4, 2>(args) : assemble_ghost<3, 2>(args);
+  const Args<D> args{ctx, opt, materials, grid, activity, grid_nodes, particles, bc, loc, system, inverted, dynamic};
+  const bool mixed = system.dofs.per_node == D + 1;
+  if constexpr (D == 3) {  // tet4
+    mixed ? assemble_mixed<4, 3>(args) : assemble_displacement<4, 3>(args);
+  } else {
+    const bool quad = grid.stride == 4;
+    if (mixed) quad ? assemble_mixed<4, 2>(args) : assemble_mixed<3, 2>(args);
+    else quad ? assemble_displacement<4, 2>(args) : assemble_displacement<3, 2>(args);
+    if (activity.ghost_faces.size() > 0 && system.scatter.size() > 1) {
+      if (mixed) quad ? assemble_ghost<4, 3>(args) : assemble_ghost<3, 3>(args);
+      else quad ? assemble_ghost<4, 2>(args) : assemble_ghost<3, 2>(args);
+    }
   }
 
   // Nodal terms on active nodes: lumped inertia (Newmark) and external loads.
@@ -156,8 +171,8 @@ AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOp
   double* values = A.valuePtr();
   for_each_index(grid_nodes.size(), [&](Index i) {
     if (dofs.kind[std::size_t(i) * std::size_t(pn)] == DofKind::absent) return;
-    const Vec2 a = inertia ? newmark_acceleration(grid_nodes, i, ctx.dt) : Vec2::Zero();
-    for (int d = 0; d < 2; ++d) {
+    const Vec<D> a = inertia ? newmark_acceleration(grid_nodes, i, ctx.dt) : Vec<D>::Zero();
+    for (int d = 0; d < D; ++d) {
       const Index dof = dofs.dof(i, d);
       double r = -bc.external[dof];
       if (inertia) {
@@ -175,5 +190,12 @@ AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOp
   pin_dormant_dofs(activity, opt.tangent, system);
   return {inverted.load()};
 }
+
+template AssemblyResult assemble_grid_system<2>(const StepContext&, const GridAssemblyOptions&, const std::vector<BodyMaterial>&, const Cells&,
+                                                const GridActivity&, const Nodes<2>&, const Points<2>&, const BoundaryConditions<2>&,
+                                                PointLocations&, LinearSystem&);
+template AssemblyResult assemble_grid_system<3>(const StepContext&, const GridAssemblyOptions&, const std::vector<BodyMaterial>&, const Cells&,
+                                                const GridActivity&, const Nodes<3>&, const Points<3>&, const BoundaryConditions<3>&,
+                                                PointLocations&, LinearSystem&);
 
 }  // namespace loom

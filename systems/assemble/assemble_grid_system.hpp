@@ -29,9 +29,11 @@ struct GridAssemblyOptions {
   bool inertia = true;  // false: the static residual f_int - f_ext (initial equilibrium acceleration)
 };
 
+// D = 2 (tri3, quad4 grids) or 3 (tet4 grids); instantiated for both.
+template <int D>
 AssemblyResult assemble_grid_system(const StepContext& ctx, const GridAssemblyOptions& options,
                                     const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity,
-                                    const Nodes<2>& grid_nodes, const Points<2>& particles, const BoundaryConditions<2>& bc,
+                                    const Nodes<D>& grid_nodes, const Points<D>& particles, const BoundaryConditions<D>& bc,
                                     PointLocations& loc, LinearSystem& system);
 
 }  // namespace loom

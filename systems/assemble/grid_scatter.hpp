@@ -22,15 +22,17 @@ void for_each_active_cell_by_colour(const GridActivity& act, Body&& body, Index 
                 Execution::parallel, grain);
 }
 
-inline double grid_dof_value(const Nodes<2>& g, Index dof, int pn) {
+template <int D>
+double grid_dof_value(const Nodes<D>& g, Index dof, int pn) {
   const Index node = dof / pn;
   const int comp = dof % pn;
-  return comp < 2 ? g.u[node][comp] : g.p[node];
+  return comp < D ? g.u[node][comp] : g.p[node];
 }
 
 // Whether some prescribed dof of a cell lags its target: its residual then needs the cell's K (the lift
 // below), even when no tangent is assembled.
-inline bool cell_lags(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, const DofMap& dofs) {
+template <int D>
+bool cell_lags(Index entry, const CellScatter& sc, const BoundaryConditions<D>& bc, const Nodes<D>& g, const DofMap& dofs) {
   for (int k = 0; k < sc.dofs_per_cell; ++k) {
     const Index dof = sc.cell_dof(entry, k);
     if (dofs.kind[std::size_t(dof)] == DofKind::prescribed && bc.target[dof] != grid_dof_value(g, dof, dofs.per_node)) return true;
@@ -55,8 +57,8 @@ inline void pin_dormant_dofs(const GridActivity& act, bool tangent, LinearSystem
   for (Index dof : act.dormant_dofs) system.residual_full[dof] = 0.0, system.residual[dofs.equation[std::size_t(dof)]] = 0.0;
 }
 
-template <int NE>
-void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<2>& bc, const Nodes<2>& g, bool tangent,
+template <int NE, int D>
+void scatter_cell(Index entry, const CellScatter& sc, const BoundaryConditions<D>& bc, const Nodes<D>& g, bool tangent,
                   Eigen::Matrix<double, NE, 1>& r, const Eigen::Matrix<double, NE, NE>& K, LinearSystem& system) {
   const int pn = system.dofs.per_node;
   Eigen::Matrix<double, NE, 1> gap = Eigen::Matrix<double, NE, 1>::Zero();

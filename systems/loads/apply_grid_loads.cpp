@@ -7,18 +7,29 @@
 #include "systems/map/project_to_grid.hpp"
 
 namespace loom {
+namespace {
 
-void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
-                      const Points<2>& particles, const PointLocations& particle_loc, const Points<2>& traction_points,
-                      const PointLocations& traction_loc, BoundaryConditions<2>& bc) {
+// An expression at a point (z only in 3D: a 2D call is the one it always was).
+template <int D>
+double evaluate_at(const Expression& e, double t, const Vec<D>& X) {
+  if constexpr (D == 3) return e(t, X.x(), X.y(), X.z());
+  else return e(t, X.x(), X.y());
+}
+
+}  // namespace
+
+template <int D>
+void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<D>& grid_nodes, const GridActivity& activity,
+                      const Points<D>& particles, const PointLocations& particle_loc, const Points<D>& traction_points,
+                      const PointLocations& traction_loc, BoundaryConditions<D>& bc) {
   const int pn = bc.per_node;
   // 1. Prescribed values.
   for (const auto& p : bc.prescribed) {
     // Method mpm_fem moves the nodes (X = X^ + u_n): a prescribed displacement is a function of the undeformed X^.
-    const Vec2 X = grid_nodes.u_n.used() ? Vec2(grid_nodes.X[p.node] - grid_nodes.u_n[p.node]) : grid_nodes.X[p.node];
+    const Vec<D> X = grid_nodes.u_n.used() ? Vec<D>(grid_nodes.X[p.node] - grid_nodes.u_n[p.node]) : grid_nodes.X[p.node];
     const Expression& g = bc.expressions[std::size_t(p.expression)];
-    const bool displacement = p.dof % pn < 2;
-    bc.target[p.dof] = displacement ? g(ctx.t, X.x(), X.y()) - g(ctx.t - ctx.dt, X.x(), X.y()) : g(ctx.t, X.x(), X.y());
+    const bool displacement = p.dof % pn < D;
+    bc.target[p.dof] = displacement ? evaluate_at<D>(g, ctx.t, X) - evaluate_at<D>(g, ctx.t - ctx.dt, X) : evaluate_at<D>(g, ctx.t, X);
   }
   bc.external.setZero();
   if (!bc.has_loads) return;
@@ -29,14 +40,14 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
   // Expressions are not thread-safe (muparser): evaluated serially, once per step.
   for (Index p = 0; p < n; ++p) {
     const auto& e = bc.body_force[std::size_t(particles.body[p])];
-    Vec2 b = Vec2::Zero();
-    for (int d = 0; d < 2; ++d)
-      if (e[std::size_t(d)] != kNoIndex) b[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, particles.X[p].x(), particles.X[p].y());
+    Vec<D> b = Vec<D>::Zero();
+    for (int d = 0; d < D; ++d)
+      if (e[std::size_t(d)] != kNoIndex) b[d] = evaluate_at<D>(bc.expressions[std::size_t(e[std::size_t(d)])], ctx.t, particles.X[p]);
     bc.particle_body_force[std::size_t(p)] = b;
   }
   // FEM cells of method mpm_fem: at their Gauss points in the undeformed body (X - u_n).
   bc.fem_body_force.clear();
-  if (activity.always_active_from != kNoIndex) {
+  if constexpr (D == 2) if (activity.always_active_from != kNoIndex) {
     const Quad9Gauss& rule = quad9_gauss();
     for (Index c = activity.always_active_from; c < grid.size(); ++c) {
       const auto& e = bc.body_force[std::size_t(grid.body[c])];
@@ -57,14 +68,14 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
     const Index* pts = particle_loc.points_in(c);
     for (Index k = 0; k < particle_loc.count_in(c); ++k) {
       const Index p = pts[k];
-      const Vec2 f = particles.mass[p] * bc.particle_body_force[std::size_t(p)];
+      const Vec<D> f = particles.mass[p] * bc.particle_body_force[std::size_t(p)];
       for (int a = 0; a < grid.stride; ++a)
-        for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += particle_loc.N[p][a] * f[d];
+        for (int d = 0; d < D; ++d) bc.external[pn * grid.node(c, a) + d] += particle_loc.N[p][a] * f[d];
     }
   });
 
-  // 3. Tractions at the traction points.
-  for (Index q = 0; q < traction_points.X.size(); ++q) {
+  // 3. Tractions at the traction points (2D: a 3D scene has none).
+  if constexpr (D == 2) for (Index q = 0; q < traction_points.X.size(); ++q) {
     const auto& e = bc.traction_point_expression[std::size_t(q)];
     const Vec2& X = traction_points.X[q];
     Vec2 t = Vec2::Zero();
@@ -81,5 +92,11 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>&
       for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];
   }
 }
+
+
+template void apply_grid_loads<2>(const StepContext&, const Cells&, const Nodes<2>&, const GridActivity&, const Points<2>&, const PointLocations&,
+                                  const Points<2>&, const PointLocations&, BoundaryConditions<2>&);
+template void apply_grid_loads<3>(const StepContext&, const Cells&, const Nodes<3>&, const GridActivity&, const Points<3>&, const PointLocations&,
+                                  const Points<3>&, const PointLocations&, BoundaryConditions<3>&);
 
 }  // namespace loom

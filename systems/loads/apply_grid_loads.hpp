@@ -23,8 +23,9 @@
 
 namespace loom {
 
-void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
-                      const Points<2>& particles, const PointLocations& particle_loc, const Points<2>& traction_points,
-                      const PointLocations& traction_loc, BoundaryConditions<2>& bc);
+template <int D>
+void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<D>& grid_nodes, const GridActivity& activity,
+                      const Points<D>& particles, const PointLocations& particle_loc, const Points<D>& traction_points,
+                      const PointLocations& traction_loc, BoundaryConditions<D>& bc);
 
 }  // namespace loom

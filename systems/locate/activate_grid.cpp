@@ -6,7 +6,8 @@
 
 namespace loom {
 
-void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocations& particle_loc, const BoundaryConditions<2>& bc,
+template <int D>
+void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocations& particle_loc, const BoundaryConditions<D>& bc,
                    GridActivity& activity, LinearSystem& system) {
   const Index n_cells = grid.size();
   const Index fem_from = activity.always_active_from == kNoIndex ? n_cells : activity.always_active_from;
@@ -49,5 +50,9 @@ void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocatio
   build_grid_system(grid, bc, ghost, activity, system);
   LOOM_CHECK(fit_grid_system(ghost, activity, system), RunError, "the grid's Newton system does not hold the active set it was built around");
 }
+
+
+template void activate_grid<2>(const StepContext&, const Cells&, const PointLocations&, const BoundaryConditions<2>&, GridActivity&, LinearSystem&);
+template void activate_grid<3>(const StepContext&, const Cells&, const PointLocations&, const BoundaryConditions<3>&, GridActivity&, LinearSystem&);
 
 }  // namespace loom

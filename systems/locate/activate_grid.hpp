@@ -14,7 +14,8 @@
 
 namespace loom {
 
+template <int D>
 void activate_grid(const StepContext& ctx, const Cells& grid, const PointLocations& particle_loc,
-                   const BoundaryConditions<2>& bc, GridActivity& activity, LinearSystem& system);
+                   const BoundaryConditions<D>& bc, GridActivity& activity, LinearSystem& system);
 
 }  // namespace loom

@@ -5,7 +5,8 @@
 
 namespace loom {
 
-void build_grid_system(const Cells& grid, const BoundaryConditions<2>& bc, bool ghost, GridActivity& activity, LinearSystem& system) {
+template <int D>
+void build_grid_system(const Cells& grid, const BoundaryConditions<D>& bc, bool ghost, GridActivity& activity, LinearSystem& system) {
   const Index n_cells = grid.size(), n_nodes = Index(bc.target.size()) / bc.per_node;
   const int nc = grid.stride;
   // 1. The base cells and their nodes; the system cells: those and every cell sharing a node with them.
@@ -95,5 +96,9 @@ bool fit_grid_system(bool ghost, GridActivity& activity, LinearSystem& system) {
   }
   return true;
 }
+
+
+template void build_grid_system<2>(const Cells&, const BoundaryConditions<2>&, bool, GridActivity&, LinearSystem&);
+template void build_grid_system<3>(const Cells&, const BoundaryConditions<3>&, bool, GridActivity&, LinearSystem&);
 
 }  // namespace loom

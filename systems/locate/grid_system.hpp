@@ -24,7 +24,8 @@
 namespace loom {
 
 // Builds dofs, pattern and scatter[0] around activity.system_base; `ghost`: the ghost penalty is on.
-void build_grid_system(const Cells& grid, const BoundaryConditions<2>& bc, bool ghost, GridActivity& activity, LinearSystem& system);
+template <int D>
+void build_grid_system(const Cells& grid, const BoundaryConditions<D>& bc, bool ghost, GridActivity& activity, LinearSystem& system);
 
 // Fits the current active set (and its ghost faces) into the built system: false if it does not fit, else
 // builds the ghost-face scatter (scatter[1]) and the dormant dofs.

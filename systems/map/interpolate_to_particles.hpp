@@ -20,13 +20,15 @@ namespace loom {
 
 inline constexpr double kNewmarkBeta = 0.25, kNewmarkGamma = 0.5;  // seed 003 §3.3
 
-void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes,
-                              const PointLocations& loc, Points<2>& particles);
+template <int D>
+void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const Nodes<D>& grid_nodes,
+                              const PointLocations& loc, Points<D>& particles);
 
 // Moves points that only follow the body (traction and probe points): u += sum_I N_I du_I over their host
 // active cell (locate's host_active_cell; the grid is zero on inactive nodes). A point with no active cell
 // near it stays where it is.
-void move_with_grid(const StepContext& ctx, const Cells& grid, const Nodes<2>& grid_nodes, const GridActivity& activity,
-                    const PointLocations& loc, Points<2>& points);
+template <int D>
+void move_with_grid(const StepContext& ctx, const Cells& grid, const Nodes<D>& grid_nodes, const GridActivity& activity,
+                    const PointLocations& loc, Points<D>& points);
 
 }  // namespace loom

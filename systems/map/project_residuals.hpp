@@ -19,8 +19,9 @@
 
 namespace loom {
 
+template <int D>
 void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Cells& grid,
-                       const GridActivity& activity, const Points<2>& particles, const PointLocations& loc,
-                       const BoundaryConditions<2>& bc, Nodes<2>& grid_nodes);
+                       const GridActivity& activity, const Points<D>& particles, const PointLocations& loc,
+                       const BoundaryConditions<D>& bc, Nodes<D>& grid_nodes);
 
 }  // namespace loom

@@ -2,9 +2,10 @@
 
 namespace loom {
 
-void project_to_grid(const StepContext&, const Cells& grid, const Points<2>& particles, const PointLocations& loc,
-                     Nodes<2>& grid_nodes) {
-  Nodes<2>& g = grid_nodes;
+template <int D>
+void project_to_grid(const StepContext&, const Cells& grid, const Points<D>& particles, const PointLocations& loc,
+                     Nodes<D>& grid_nodes) {
+  Nodes<D>& g = grid_nodes;
   const bool dynamic = g.v_n.used(), mixed = g.p.used(), osgs = g.proj_u.used(), volumes = g.lumped_volume.used();
   // 1. Reset: the grid starts the step undeformed and empty.
   for_each_index(g.size(), [&](Index i) {
@@ -42,5 +43,9 @@ void project_to_grid(const StepContext&, const Cells& grid, const Points<2>& par
     if (osgs) g.proj_u[i] /= m, g.proj_p[i] /= m;
   });
 }
+
+
+template void project_to_grid<2>(const StepContext&, const Cells&, const Points<2>&, const PointLocations&, Nodes<2>&);
+template void project_to_grid<3>(const StepContext&, const Cells&, const Points<3>&, const PointLocations&, Nodes<3>&);
 
 }  // namespace loom

@@ -17,8 +17,9 @@
 
 namespace loom {
 
-void project_to_grid(const StepContext& ctx, const Cells& grid, const Points<2>& particles, const PointLocations& loc,
-                     Nodes<2>& grid_nodes);
+template <int D>
+void project_to_grid(const StepContext& ctx, const Cells& grid, const Points<D>& particles, const PointLocations& loc,
+                     Nodes<D>& grid_nodes);
 
 // Runs body(c) for every cell holding points, colour by colour, the cells of a colour in parallel.
 template <class Body>

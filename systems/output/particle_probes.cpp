@@ -12,7 +12,7 @@ namespace {
 // Method mpm_fem: the FEM cells' energies at their Gauss points on the undeformed cells (X^ = X - u_n, after the
 // step's commit u_n is the FEM nodes' displacement): kinetic 1/2 rho_i V_0 |v_g|^2 (the consistent mass's quadratic
 // form), elastic V_0 psi(F), F = dx/dX^, potential -rho V_0 b . u_g.
-void add_fem_energy(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const GridView& g, const BoundaryConditions<2>& bc,
+void add_fem_energy(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const GridView<2>& g, const BoundaryConditions<2>& bc,
                     double& kinetic, double& elastic, double& potential) {
   const SceneSpec& scene = *ctx.scene;
   const Quad9Gauss& rule = quad9_gauss();
@@ -56,7 +56,7 @@ ParticleProbePlan plan_particle_probes(const SceneSpec& scene) {
   return plan;
 }
 
-double pressure_jump(const GridView& g) {
+double pressure_jump(const GridView<2>& g) {
   double sum = 0.0;
   long long n = 0;
   for (Index c : g.activity.active_cells)
@@ -70,9 +70,10 @@ double pressure_jump(const GridView& g) {
   return n ? sum / double(n) : 0.0;
 }
 
+template <int D>
 void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                              const Points<2>& particles, const Points<2>& probe_points, const GridView& grid,
-                              const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                              const Points<D>& particles, const Points<D>& probe_points, const GridView<D>& grid,
+                              const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                               std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
   const bool mixed = particles.pressure.used();
@@ -108,7 +109,8 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
                      elastic_energy(materials[std::size_t(particles.body[i])], particles.F[i], mixed, mixed ? particles.pressure[i] : 0.0);
           if (!bc.particle_body_force.empty()) potential -= particles.mass[i] * bc.particle_body_force[std::size_t(i)].dot(particles.u[i]);
         }
-        if (grid.activity.always_active_from != kNoIndex) add_fem_energy(ctx, materials, grid, bc, kinetic, elastic, potential);
+        if constexpr (D == 2)
+          if (grid.activity.always_active_from != kNoIndex) add_fem_energy(ctx, materials, grid, bc, kinetic, elastic, potential);
         values[k] = p.energy == EnergyPart::kinetic     ? kinetic
                     : p.energy == EnergyPart::elastic   ? elastic
                     : p.energy == EnergyPart::potential ? potential
@@ -117,15 +119,23 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
         break;
       }
       case ProbeKind::angular_momentum: {  // about `at`, of the particles (method mpm; the loader refuses mpm_fem)
-        double L = 0.0;
+        double L = 0.0;  // 2D: the out-of-plane moment; 3D: the moment's component
         for (Index i = 0; i < particles.X.size(); ++i) {
-          const Vec2 r = particles.position(i) - p.at;
-          L += particles.mass[i] * (r.x() * particles.v[i].y() - r.y() * particles.v[i].x());
+          if constexpr (D == 2) {
+            const Vec2 r = particles.position(i) - p.at;
+            L += particles.mass[i] * (r.x() * particles.v[i].y() - r.y() * particles.v[i].x());
+          } else {
+            const Vec3 r = particles.position(i) - Vec3(p.at.x(), p.at.y(), p.at_z);
+            L += particles.mass[i] * r.cross(particles.v[i])[p.component];
+          }
         }
         values[k] = L;
         break;
       }
-      case ProbeKind::pressure_jump: values[k] = grid.nodes.p.used() ? pressure_jump(grid) : kNaN; break;
+      case ProbeKind::pressure_jump:  // 2D (the loader refuses it in 3D)
+        if constexpr (D == 2) values[k] = grid.nodes.p.used() ? pressure_jump(grid) : kNaN;
+        else values[k] = kNaN;
+        break;
       case ProbeKind::volume:  // fem and pfem only (rejected by the scene checks for mpm)
       case ProbeKind::speed:
       case ProbeKind::mass:
@@ -136,5 +146,13 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
     }
   }
 }
+
+
+template void evaluate_particle_probes<2>(const StepContext&, const ParticleProbePlan&, const std::vector<BodyMaterial>&, const Points<2>&,
+                                          const Points<2>&, const GridView<2>&, const LinearSystem&, const BoundaryConditions<2>&, int,
+                                          std::vector<double>&);
+template void evaluate_particle_probes<3>(const StepContext&, const ParticleProbePlan&, const std::vector<BodyMaterial>&, const Points<3>&,
+                                          const Points<3>&, const GridView<3>&, const LinearSystem&, const BoundaryConditions<3>&, int,
+                                          std::vector<double>&);
 
 }  // namespace loom

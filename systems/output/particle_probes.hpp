@@ -30,16 +30,19 @@ struct ParticleProbePlan {
 
 ParticleProbePlan plan_particle_probes(const SceneSpec& scene);
 
-// The grid stores are read by pressure_jump probes only.
+// The grid stores are read by pressure_jump probes and mpm_fem's energies only.
+template <int D>
 struct GridView {
   const Cells& grid;
   const GridActivity& activity;
-  const Nodes<2>& nodes;
+  const Nodes<D>& nodes;
 };
 
+// D = 2 or 3 (3D: angular_momentum reads the probe's component of sum m r x v; pressure_jump is 2D).
+template <int D>
 void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                              const Points<2>& particles, const Points<2>& probe_points, const GridView& grid,
-                              const LinearSystem& system, const BoundaryConditions<2>& bc, int newton_iterations,
+                              const Points<D>& particles, const Points<D>& probe_points, const GridView<D>& grid,
+                              const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                               std::vector<double>& values);
 
 }  // namespace loom

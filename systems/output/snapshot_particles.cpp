@@ -14,7 +14,8 @@ bool particle_stress(const BodyMaterial& material, const Mat3& F, bool mixed, do
   return true;
 }
 
-void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Points<2>& particles, Frame& frame) {
+template <int D>
+void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Points<D>& particles, Frame& frame) {
   frame.step = ctx.step;
   frame.time = ctx.t;
   const Index n = particles.X.size();
@@ -31,9 +32,9 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
   FrameArray von_mises{"von_mises", 1, std::vector<double>(un, 0.0)};
   for_each_index(n, [&](Index p) {
     const std::size_t k = std::size_t(p);
-    const Vec2 x = particles.position(p);
-    frame.points[3 * k] = x.x(), frame.points[3 * k + 1] = x.y();
-    for (int d = 0; d < 2; ++d) {
+    const Vec<D> x = particles.position(p);
+    for (int d = 0; d < D; ++d) frame.points[3 * k + std::size_t(d)] = x[d];
+    for (int d = 0; d < D; ++d) {
       displacement.values[3 * k + std::size_t(d)] = particles.u[p][d];
       if (dynamic) velocity.values[3 * k + std::size_t(d)] = particles.v[p][d];
     }
@@ -58,7 +59,8 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
   if (mixed) frame.notes.emplace_back("mean_stress_definition", kMeanStressDefinition);
 }
 
-void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<2>& g,
+template <int D>
+void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<D>& g,
                    const PointLocations& particle_loc, Frame& frame) {
   frame.step = ctx.step;
   frame.time = ctx.t;
@@ -72,10 +74,10 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   for (std::size_t i = 0; i < n; ++i) {
     const Index node = Index(i);
     // Method mpm_fem: the undeformed grid and the whole displacement (reset or FEM, and the step's).
-    const Vec2 X = g.u_n.used() ? Vec2(g.X[node] - g.u_n[node]) : g.X[node];
-    const Vec2 u = g.u_n.used() ? Vec2(g.u_n[node] + g.u[node]) : g.u[node];
-    frame.points[3 * i] = X.x(), frame.points[3 * i + 1] = X.y();
-    for (int d = 0; d < 2; ++d) {
+    const Vec<D> X = g.u_n.used() ? Vec<D>(g.X[node] - g.u_n[node]) : g.X[node];
+    const Vec<D> u = g.u_n.used() ? Vec<D>(g.u_n[node] + g.u[node]) : g.u[node];
+    for (int d = 0; d < D; ++d) frame.points[3 * i + std::size_t(d)] = X[d];
+    for (int d = 0; d < D; ++d) {
       displacement.values[3 * i + std::size_t(d)] = u[d];
       if (g.v.used()) velocity.values[3 * i + std::size_t(d)] = g.v[node][d];
     }
@@ -87,7 +89,7 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   for (Index c : activity.active_cells) {
     for (int a = 0; a < grid.stride; ++a) frame.connectivity.push_back(grid.node(c, a));
     frame.offsets.push_back(Index(frame.connectivity.size()));
-    frame.cell_types.push_back(grid.stride == 9 ? kVtkBiquadraticQuad : grid.stride == 4 ? kVtkQuad : kVtkTriangle);
+    frame.cell_types.push_back(D == 3 ? kVtkTetra : grid.stride == 9 ? kVtkBiquadraticQuad : grid.stride == 4 ? kVtkQuad : kVtkTriangle);
     count.values.push_back(particle_loc.count_in(c));
   }
   frame.point_arrays.clear();
@@ -100,5 +102,11 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   frame.notes.clear();
   if (g.p.used()) frame.notes = {{"pressure_definition", kPressureDefinition}, {"mean_stress_definition", kMeanStressDefinition}};
 }
+
+
+template void snapshot_particles<2>(const StepContext&, const std::vector<BodyMaterial>&, const Points<2>&, Frame&);
+template void snapshot_particles<3>(const StepContext&, const std::vector<BodyMaterial>&, const Points<3>&, Frame&);
+template void snapshot_grid<2>(const StepContext&, const Cells&, const GridActivity&, const Nodes<2>&, const PointLocations&, Frame&);
+template void snapshot_grid<3>(const StepContext&, const Cells&, const GridActivity&, const Nodes<3>&, const PointLocations&, Frame&);
 
 }  // namespace loom

@@ -19,9 +19,11 @@
 
 namespace loom {
 
-void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Points<2>& particles, Frame& frame);
+template <int D>
+void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Points<D>& particles, Frame& frame);
 
-void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<2>& grid_nodes,
+template <int D>
+void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<D>& grid_nodes,
                    const PointLocations& particle_loc, Frame& frame);
 
 // Cauchy stress of a material point: sigma_dev(F) + p I for the mixed formulation (neo_hooke_split with the

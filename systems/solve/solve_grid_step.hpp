@@ -11,7 +11,8 @@
 
 namespace loom {
 
-LinearSolveStatus solve_grid_step(const Nodes<2>& grid_nodes, const BoundaryConditions<2>& bc, LinearSolve& solver,
+template <int D>
+LinearSolveStatus solve_grid_step(const Nodes<D>& grid_nodes, const BoundaryConditions<D>& bc, LinearSolve& solver,
                                   LinearSystem& system, Timers& timers);
 
 }  // namespace loom

@@ -12,11 +12,13 @@ namespace loom {
 // d a / d u of a node: 1 / (beta dt^2).
 inline double newmark_stiffness(double dt) { return 1.0 / (kNewmarkBeta * dt * dt); }
 
-inline Vec2 newmark_acceleration(const Nodes<2>& g, Index i, double dt) {
+template <int D>
+Vec<D> newmark_acceleration(const Nodes<D>& g, Index i, double dt) {
   return (g.u[i] - dt * g.v_n[i]) * newmark_stiffness(dt) - (0.5 / kNewmarkBeta - 1.0) * g.a_n[i];
 }
 
-inline Vec2 newmark_velocity(const Nodes<2>& g, Index i, const Vec2& a, double dt) {
+template <int D>
+Vec<D> newmark_velocity(const Nodes<D>& g, Index i, const Vec<D>& a, double dt) {
   return g.v_n[i] + dt * ((1.0 - kNewmarkGamma) * g.a_n[i] + kNewmarkGamma * a);
 }
 

@@ -8,9 +8,11 @@
 
 namespace loom {
 
-void update_grid_iterate(const StepContext& ctx, double step, const LinearSystem& system, Nodes<2>& grid_nodes);
+template <int D>
+void update_grid_iterate(const StepContext& ctx, double step, const LinearSystem& system, Nodes<D>& grid_nodes);
 
 // v and a of every node with mass from its step displacement (Newmark); no-op for static runs.
-void update_grid_kinematics(const StepContext& ctx, Nodes<2>& grid_nodes);
+template <int D>
+void update_grid_kinematics(const StepContext& ctx, Nodes<D>& grid_nodes);
 
 }  // namespace loom

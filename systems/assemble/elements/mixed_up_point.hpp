@@ -1,7 +1,8 @@
-// Mixed u-p kernel of one material point on a background cell with NC corners (seed 003 eqs 8-26; tri3
-// linear, NC = 3, or quad4 bilinear, NC = 4), written in the
+// Mixed u-p kernel of one material point on a background cell with NC corners in D dimensions (seed 003
+// eqs 8-26; tri3 linear, NC = 3, or quad4 bilinear, NC = 4, in 2D; tet4 linear, NC = 4, in 3D), written in the
 // "positive" form of the pressure equation, (p/kappa - (J - 1), q) (the seed's form times -1, so that the
-// stabilisation adds positive terms). Local dofs node-major [u_x, u_y, p]: 3a + i, 3a + 2.
+// stabilisation adds positive terms). Local dofs node-major [u_x, u_y, (u_z,) p]: (D + 1) a + i, (D + 1) a + D.
+// D defaults to 2 and is never deduced: 3D callers write <4, 3>.
 //
 // Kinematics (updated Lagrangian on the grid, which starts the step undeformed at the configuration x_n):
 //   dF = I + sum_a du_a (x) dN_a,  F = dF F_n,  G_a = F_n^T dN_a (gradient in the reference), dN = grad N at x_n.
@@ -31,33 +32,33 @@
 
 namespace loom {
 
-template <int NC>
-using UpVector = Eigen::Matrix<double, 3 * NC, 1>;
-template <int NC>
-using UpMatrix = Eigen::Matrix<double, 3 * NC, 3 * NC>;
+template <int NC, int D = 2>
+using UpVector = Eigen::Matrix<double, (D + 1) * NC, 1>;
+template <int NC, int D = 2>
+using UpMatrix = Eigen::Matrix<double, (D + 1) * NC, (D + 1) * NC>;
 template <int NC>
 using CornerScalars = Eigen::Matrix<double, NC, 1>;
-template <int NC>
-using CornerVectors = Eigen::Matrix<double, NC, 2>;  // rows: corners
+template <int NC, int D = 2>
+using CornerVectors = Eigen::Matrix<double, NC, D>;  // rows: corners
 
 // The cell's nodal values (rows: corners) at the Newton iterate.
-template <int NC>
+template <int NC, int D = 2>
 struct UpCellValues {
-  CornerVectors<NC> du = CornerVectors<NC>::Zero();      // step displacement
-  CornerScalars<NC> p = CornerScalars<NC>::Zero();       // pressure
-  CornerVectors<NC> a = CornerVectors<NC>::Zero();       // Newmark acceleration
-  CornerVectors<NC> proj_u = CornerVectors<NC>::Zero();  // OSGS projections
+  CornerVectors<NC, D> du = CornerVectors<NC, D>::Zero();      // step displacement
+  CornerScalars<NC> p = CornerScalars<NC>::Zero();             // pressure
+  CornerVectors<NC, D> a = CornerVectors<NC, D>::Zero();       // Newmark acceleration
+  CornerVectors<NC, D> proj_u = CornerVectors<NC, D>::Zero();  // OSGS projections
   CornerScalars<NC> proj_p = CornerScalars<NC>::Zero();
 };
 
-template <int NC>
+template <int NC, int D = 2>
 struct UpPoint {
-  CornerScalars<NC> N;   // shape functions at x_n
-  CornerVectors<NC> dN;  // their gradients at x_n
+  CornerScalars<NC> N;      // shape functions at x_n
+  CornerVectors<NC, D> dN;  // their gradients at x_n
   double V0 = 0;   // reference volume
   Mat3 F_n;        // deformation gradient at the start of the step
   double rho_n = 0;  // density at x_n: m / V_n
-  Vec2 b = Vec2::Zero();  // body force per unit mass
+  Vec<D> b = Vec<D>::Zero();  // body force per unit mass
 };
 
 struct UpStabilisation {
@@ -68,17 +69,18 @@ struct UpStabilisation {
 };
 
 // Adds the point's contribution; F receives the deformation gradient. False if J <= 0.
-template <int NC>
-bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, const UpPoint<NC>& pt, const UpCellValues<NC>& cell,
-                  Mat3& F, UpVector<NC>& r, UpMatrix<NC>* K) {
+template <int NC, int D = 2>
+bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, const UpPoint<NC, D>& pt, const UpCellValues<NC, D>& cell,
+                  Mat3& F, UpVector<NC, D>& r, UpMatrix<NC, D>* K) {
+  constexpr int PN = D + 1;  // dofs per node
   Mat3 dF = Mat3::Identity();
-  dF.topLeftCorner<2, 2>() += cell.du.transpose() * pt.dN;
+  dF.topLeftCorner<D, D>() += cell.du.transpose() * pt.dN;
   F = dF * pt.F_n;
   const double J = F.determinant();
   if (!(J > 0.0)) return false;
   const Mat3 Finv = F.inverse();
   const Mat3 JFinvT = J * Finv.transpose();
-  const CornerVectors<NC> G = pt.dN * pt.F_n.template topLeftCorner<2, 2>();
+  const CornerVectors<NC, D> G = pt.dN * pt.F_n.template topLeftCorner<D, D>();
   const double p_h = pt.N.dot(cell.p);
   const double ik = material.inv_kappa;
 
@@ -87,47 +89,46 @@ bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, co
   Mat9 A;
   if (K ? !material.deviatoric_stress_tangent(F, P, A) : !material.deviatoric_stress(F, P)) return false;
   P += p_h * JFinvT;
-  const CornerVectors<NC> f = pt.V0 * G * P.topLeftCorner<2, 2>().transpose();  // f(a, i) = P_ij G_a,j
-  const CornerVectors<NC> dJ = G * JFinvT.topLeftCorner<2, 2>().transpose();    // dJ(b, k) = J F^-T_kl G_b,l = dJ/d du_b,k
+  const CornerVectors<NC, D> f = pt.V0 * G * P.template topLeftCorner<D, D>().transpose();  // f(a, i) = P_ij G_a,j
+  const CornerVectors<NC, D> dJ = G * JFinvT.template topLeftCorner<D, D>().transpose();    // dJ(b, k) = J F^-T_kl G_b,l = dJ/d du_b,k
   for (int a = 0; a < NC; ++a) {
-    r[3 * a] += f(a, 0);
-    r[3 * a + 1] += f(a, 1);
-    r[3 * a + 2] += pt.V0 * pt.N[a] * (p_h * ik - (J - 1.0));
+    for (int i = 0; i < D; ++i) r[PN * a + i] += f(a, i);
+    r[PN * a + D] += pt.V0 * pt.N[a] * (p_h * ik - (J - 1.0));
   }
   if (K) {
     Mat9 B;
     NeoHookeSplit::volume_tangent(F, B);
     A += p_h * B;
-    for (int i = 0; i < 2; ++i)
-      for (int k = 0; k < 2; ++k) {
-        Eigen::Matrix2d C;  // C_jl = A_ijkl
-        C << A(ij(i, 0), ij(k, 0)), A(ij(i, 0), ij(k, 1)), A(ij(i, 1), ij(k, 0)), A(ij(i, 1), ij(k, 1));
+    for (int i = 0; i < D; ++i)
+      for (int k = 0; k < D; ++k) {
+        Eigen::Matrix<double, D, D> C;  // C_jl = A_ijkl
+        for (int j = 0; j < D; ++j)
+          for (int l = 0; l < D; ++l) C(j, l) = A(ij(i, j), ij(k, l));
         const Eigen::Matrix<double, NC, NC> block = pt.V0 * G * C * G.transpose();
         for (int a = 0; a < NC; ++a)
-          for (int b = 0; b < NC; ++b) (*K)(3 * a + i, 3 * b + k) += block(a, b);
+          for (int b = 0; b < NC; ++b) (*K)(PN * a + i, PN * b + k) += block(a, b);
       }
     for (int a = 0; a < NC; ++a)
       for (int b = 0; b < NC; ++b) {
-        for (int i = 0; i < 2; ++i) {
-          (*K)(3 * a + i, 3 * b + 2) += pt.V0 * dJ(a, i) * pt.N[b];  // d f(a,i) / d p_b = V_0 (J F^-T G_a)_i N_b
-          (*K)(3 * a + 2, 3 * b + i) -= pt.V0 * pt.N[a] * dJ(b, i);
+        for (int i = 0; i < D; ++i) {
+          (*K)(PN * a + i, PN * b + D) += pt.V0 * dJ(a, i) * pt.N[b];  // d f(a,i) / d p_b = V_0 (J F^-T G_a)_i N_b
+          (*K)(PN * a + D, PN * b + i) -= pt.V0 * pt.N[a] * dJ(b, i);
         }
-        (*K)(3 * a + 2, 3 * b + 2) += pt.V0 * pt.N[a] * pt.N[b] * ik;
+        (*K)(PN * a + D, PN * b + D) += pt.V0 * pt.N[a] * pt.N[b] * ik;
       }
   }
   if (!stab.vms) return true;
 
   // 2. Variational subgrid scales on the grid configuration.
   const double Vn = pt.V0 * pt.F_n.determinant();
-  const Vec2 grad_p = pt.dN.transpose() * cell.p;
-  Vec2 Ru = pt.rho_n * (pt.b - cell.a.transpose() * pt.N) + grad_p;
+  const Vec<D> grad_p = pt.dN.transpose() * cell.p;
+  Vec<D> Ru = pt.rho_n * (pt.b - cell.a.transpose() * pt.N) + grad_p;
   double Rp = (J - 1.0) - p_h * ik;
   if (stab.projected) Ru -= cell.proj_u.transpose() * pt.N, Rp -= pt.N.dot(cell.proj_p);
   const double t1 = stab.tau1 * Vn, t2 = stab.tau2 * Vn;
   for (int a = 0; a < NC; ++a) {
-    r[3 * a] += t2 * Rp * pt.dN(a, 0);
-    r[3 * a + 1] += t2 * Rp * pt.dN(a, 1);
-    r[3 * a + 2] += t1 * Ru.dot(pt.dN.row(a)) + t2 * Rp * pt.N[a] * ik;
+    for (int i = 0; i < D; ++i) r[PN * a + i] += t2 * Rp * pt.dN(a, i);
+    r[PN * a + D] += t1 * Ru.dot(pt.dN.row(a)) + t2 * Rp * pt.N[a] * ik;
   }
   if (!K) return true;
   // OSGS: P_h nearly reproduces the continuous linear field p_h / kappa of R_p (up to the lumping), so its
@@ -138,12 +139,12 @@ bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, co
   const double keep = stab.projected ? 0.0 : 1.0;
   for (int a = 0; a < NC; ++a)
     for (int b = 0; b < NC; ++b) {
-      for (int i = 0; i < 2; ++i) {
-        for (int k = 0; k < 2; ++k) (*K)(3 * a + i, 3 * b + k) += t2 * pt.dN(a, i) * dJ(b, k);
-        (*K)(3 * a + i, 3 * b + 2) -= keep * t2 * pt.dN(a, i) * pt.N[b] * ik;
-        (*K)(3 * a + 2, 3 * b + i) += -t1 * pt.rho_n * stab.c_a * pt.N[b] * pt.dN(a, i) + t2 * ik * pt.N[a] * dJ(b, i);
+      for (int i = 0; i < D; ++i) {
+        for (int k = 0; k < D; ++k) (*K)(PN * a + i, PN * b + k) += t2 * pt.dN(a, i) * dJ(b, k);
+        (*K)(PN * a + i, PN * b + D) -= keep * t2 * pt.dN(a, i) * pt.N[b] * ik;
+        (*K)(PN * a + D, PN * b + i) += -t1 * pt.rho_n * stab.c_a * pt.N[b] * pt.dN(a, i) + t2 * ik * pt.N[a] * dJ(b, i);
       }
-      (*K)(3 * a + 2, 3 * b + 2) += t1 * pt.dN.row(a).dot(pt.dN.row(b)) - keep * t2 * ik * ik * pt.N[a] * pt.N[b];
+      (*K)(PN * a + D, PN * b + D) += t1 * pt.dN.row(a).dot(pt.dN.row(b)) - keep * t2 * ik * ik * pt.N[a] * pt.N[b];
     }
   return true;
 }
@@ -151,20 +152,20 @@ bool add_up_point(const NeoHookeSplit& material, const UpStabilisation& stab, co
 // Polynomial pressure projection (Dohrmann-Bochev; seed 003 ref [47]) of one cell, with its points as the
 // quadrature: (1/mu) int (p - Pi_0 p)(q - Pi_0 q) = (1/mu) (M - m m^T / V) with M_ab = sum V_n N_a N_b,
 // m_a = sum V_n N_a, V = sum V_n. Added to the pressure rows (positive form).
-template <int NC>
+template <int NC, int D = 2>
 struct PppAccumulator {
   Eigen::Matrix<double, NC, NC> M = Eigen::Matrix<double, NC, NC>::Zero();
   CornerScalars<NC> m = CornerScalars<NC>::Zero();
   double V = 0.0;
   void add(const CornerScalars<NC>& N, double Vn) { M += Vn * N * N.transpose(), m += Vn * N, V += Vn; }
-  void apply(double inv_mu, const CornerScalars<NC>& p, UpVector<NC>& r, UpMatrix<NC>* K) const {
+  void apply(double inv_mu, const CornerScalars<NC>& p, UpVector<NC, D>& r, UpMatrix<NC, D>* K) const {
     if (!(V > 0.0)) return;
     const Eigen::Matrix<double, NC, NC> S = inv_mu * (M - m * m.transpose() / V);
     const CornerScalars<NC> Sp = S * p;
     for (int a = 0; a < NC; ++a) {
-      r[3 * a + 2] += Sp[a];
+      r[(D + 1) * a + D] += Sp[a];
       if (K)
-        for (int b = 0; b < NC; ++b) (*K)(3 * a + 2, 3 * b + 2) += S(a, b);
+        for (int b = 0; b < NC; ++b) (*K)((D + 1) * a + D, (D + 1) * b + D) += S(a, b);
     }
   }
 };
