@@ -28,13 +28,16 @@ std::unique_ptr<FemRunT<D>> make_fem_run(const SceneSpec& scene, const std::stri
 template std::unique_ptr<FemRunT<2>> make_fem_run<2>(const SceneSpec&, const std::string&);
 template std::unique_ptr<FemRunT<3>> make_fem_run<3>(const SceneSpec&, const std::string&);
 
-std::unique_ptr<MpmRun> make_mpm_run(const SceneSpec& scene, const std::string& out) {
+template <int D>
+std::unique_ptr<MpmRunT<D>> make_mpm_run(const SceneSpec& scene, const std::string& out) {
   RunOptions options;
   options.output_directory = out;
   options.write_files = !out.empty();
   options.progress = false;
-  return std::make_unique<MpmRun>(scene, options);
+  return std::make_unique<MpmRunT<D>>(scene, options);
 }
+template std::unique_ptr<MpmRunT<2>> make_mpm_run<2>(const SceneSpec&, const std::string&);
+template std::unique_ptr<MpmRunT<3>> make_mpm_run<3>(const SceneSpec&, const std::string&);
 
 namespace {
 std::string quote(const std::string& s) {

@@ -18,7 +18,8 @@ SceneSpec scene_from_text(const std::string& text, const std::vector<std::string
 template <int D = 2>
 std::unique_ptr<FemRunT<D>> make_fem_run(const SceneSpec& scene, const std::string& out = "");
 // Same for an MpmRun (method mpm).
-std::unique_ptr<MpmRun> make_mpm_run(const SceneSpec& scene, const std::string& out = "");
+template <int D = 2>
+std::unique_ptr<MpmRunT<D>> make_mpm_run(const SceneSpec& scene, const std::string& out = "");
 
 struct Command {
   int exit_code = -1;
