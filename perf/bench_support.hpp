@@ -36,13 +36,24 @@ inline SceneSpec cooks_dynamic(long long particles, int steps, const std::string
                            "grid.cells=\"" + cells + "\""});
 }
 
+// Seed 003's twisting column (scenes/column_twisting_mpm.toml) with about `particles` material points: 24 per cell
+// of a body mesh of k x k x 6k cubes, on a grid of the same spacing 1 / k over [-2, 2]^2 x [0, 7].
+inline SceneSpec column_twisting(long long particles, int steps) {
+  const int k = std::max(1, int(std::lround(std::cbrt(double(particles) / 864.0))));  // 6 k^3 cubes x 6 tetrahedra x 24
+  const std::string file = std::string(LOOM_SOURCE_DIR) + "/scenes/column_twisting_mpm.toml";
+  auto vec = [](int a, int b, int c) { return "[" + std::to_string(a) + "," + std::to_string(b) + "," + std::to_string(c) + "]"; };
+  return load_scene(file, {"body[0].mesh.divisions=" + vec(k, k, 6 * k), "grid.divisions=" + vec(4 * k, 4 * k, 7 * k),
+                           "time.steps=" + std::to_string(steps), "output.every=0"});
+}
+
 // Runs `scene` once per benchmark iteration on state.range(1) threads; returns the runs' timer totals (summed
 // over the iterations), and the particle count, number of runs and Newton iterations.
 struct MpmRunTotals {
   std::map<std::string, TimerStats> timers;
   long long particles = 0, runs = 0, newton = 0;
 };
-inline MpmRunTotals time_mpm_runs(benchmark::State& state, const SceneSpec& scene) {
+template <int D = 2>
+MpmRunTotals time_mpm_runs(benchmark::State& state, const SceneSpec& scene) {
   MpmRunTotals r;
   with_threads(int(state.range(1)), [&] {
     for (auto _ : state) {
@@ -50,7 +61,7 @@ inline MpmRunTotals time_mpm_runs(benchmark::State& state, const SceneSpec& scen
       RunOptions options;
       options.write_files = false;
       options.progress = false;
-      MpmRun run(scene, options);
+      MpmRunT<D> run(scene, options);
       r.particles = run.model().particles.X.size();
       state.ResumeTiming();
       const RunSummary s = run.run();
