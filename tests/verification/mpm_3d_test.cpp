@@ -164,8 +164,8 @@ struct MmsError {
 };
 
 MmsError run_mms(const std::string& stabilisation, int n) {
-  const std::string depth = std::to_string(2.0 / n);
-  const std::string div = "[" + std::to_string(n) + "," + std::to_string(n) + ",2]", size = "[1.0,1.0," + depth + "]";
+  const std::string depth = std::to_string(2.0 / n), nn = std::to_string(n);
+  const std::string div = std::string("[") + nn + "," + nn + ",2]", size = std::string("[1.0,1.0,") + depth + "]";
   const SceneSpec scene = load_scene(std::string(LOOM_SOURCE_DIR) + "/scenes/mms_mpm_3d.toml",
                                      {"body[0].stabilisation=\"" + stabilisation + "\"", "body[0].mesh.divisions=" + div, "grid.divisions=" + div,
                                       "body[0].mesh.size=" + size, "grid.size=" + size,
