@@ -82,6 +82,7 @@ void assemble_mixed(const Args<D>& x) {
     const Index entry = x.act.scatter_entry[std::size_t(c)];
     UpMatrix<NC, D>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     PppAccumulator<NC, D> ppp;
+    const double h2 = cell_size_squared<D>(x.grid.measure[c]);  // once per cell: the cube roots are not free
     const Index* pts = x.loc.points_in(c);
     double inv_mu = 0.0;
     bool use_ppp = false;
@@ -101,7 +102,7 @@ void assemble_mixed(const Args<D>& x) {
       UpStabilisation st;
       st.vms = spec.stabilisation == Stabilisation::asgs || spec.stabilisation == Stabilisation::osgs;
       st.projected = spec.stabilisation == Stabilisation::osgs;
-      st.tau1 = spec.tau_c1 * cell_size_squared<D>(x.grid.measure[c]) / (2.0 * m.mu);  // eq 21
+      st.tau1 = spec.tau_c1 * h2 / (2.0 * m.mu);  // eq 21
       st.tau2 = 2.0 * spec.tau_c2 * m.mu;
       st.c_a = x.dynamic ? newmark_stiffness(dt) : 0.0;
       if (!add_up_point<NC, D>(m, st, pt, cell, x.loc.F[p], r, K_needed)) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
