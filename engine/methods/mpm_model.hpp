@@ -39,7 +39,7 @@ struct MpmModelT {
   Cells grid;
   GridLayoutT<D> layout;
   GridActivity activity;
-  // Material points and the points that carry boundary tractions (2D)
+  // Material points and the points that carry boundary tractions (on edges in 2D, faces in 3D)
   Points<D> particles;
   PointLocations particle_loc;
   Points<D> traction_points;

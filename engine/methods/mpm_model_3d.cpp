@@ -1,14 +1,16 @@
 // The stores of a 3D MPM run (seed 003 §6.3-6.4): a background grid of linear tetrahedra (a Kuhn box, an
 // extruded plane mesh or a gmsh file), material points at a symmetric tetrahedral rule in every cell of each
 // body's tetrahedral mesh (engine/mesh/tet_particles.hpp), the grid's boundary conditions, point-probe tracers.
-// 3D runs take method mpm with the grid Newmark scheme, no traction points (the loader refuses tractions) and
-// no ghost penalty; the 2D-only members of MpmModelT stay empty.
+// 3D runs take method mpm with the grid Newmark scheme and no ghost penalty; the 2D-only members of MpmModelT
+// stay empty. Tractions act at traction points on the loaded boundary faces of the body mesh.
 #include <sstream>
 
 #include "engine/core/errors.hpp"
 #include "engine/graph/step_context.hpp"
 #include "engine/mesh/tet_background_grid.hpp"
 #include "engine/mesh/tet_particles.hpp"
+#include "engine/mesh/triangle_rules.hpp"
+#include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_solid_3d.hpp"
 #include "engine/methods/initial_velocity.hpp"
 #include "engine/methods/memory_estimate.hpp"
@@ -69,6 +71,50 @@ void build_material_points_3d(const SceneSpec& scene, Points<3>& particles) {
   }
 }
 
+// Traction points: the three-point (degree 2) triangle rule on every boundary face of the body's tetrahedral mesh
+// with its three corners in the region's box: exact for the grid's linear shape functions times a linear
+// traction on the face. Weight: the point's share of the face's reference area (the 2D edges' counterpart).
+void build_traction_points_3d(const SceneSpec& scene, Points<3>& points, BoundaryConditions<3>& bc) {
+  std::vector<Vec3> X;
+  std::vector<double> weight;
+  std::vector<Index> body;
+  const std::vector<TrianglePoint>& rule = triangle_rule(3);
+  for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
+    const BoundarySpec& spec = scene.boundaries[k];
+    if (!spec.has_traction) continue;
+    const TetMeshData mesh = tet4_mesh_of(scene.bodies[std::size_t(spec.body)].mesh);
+    Vec3 lo = mesh.X[0], hi = mesh.X[0];
+    for (const auto& x : mesh.X) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+    const double tol = 1e-9 * std::max(1.0, (hi - lo).norm());
+    const Vec3 bmin(spec.box_min.x(), spec.box_min.y(), spec.box_min_z), bmax(spec.box_max.x(), spec.box_max.y(), spec.box_max_z);
+    auto inside = [&](Index i) { return (mesh.X[std::size_t(i)] - bmin).minCoeff() >= -tol && (bmax - mesh.X[std::size_t(i)]).minCoeff() >= -tol; };
+    std::array<Index, 3> expr{kNoIndex, kNoIndex, kNoIndex};
+    for (int d = 0; d < 3; ++d)
+      if (spec.traction[d]) expr[std::size_t(d)] = add_expression(bc, *spec.traction[d]), bc.has_loads = true;
+    std::size_t n_faces = 0;
+    for (const BoundaryFace& f : boundary_faces(mesh.tets)) {
+      if (!inside(f.nodes[0]) || !inside(f.nodes[1]) || !inside(f.nodes[2])) continue;
+      ++n_faces;
+      const Vec3 &x0 = mesh.X[std::size_t(f.nodes[0])], &x1 = mesh.X[std::size_t(f.nodes[1])], &x2 = mesh.X[std::size_t(f.nodes[2])];
+      const double area = 0.5 * (x1 - x0).cross(x2 - x0).norm();
+      for (const TrianglePoint& q : rule) {
+        X.push_back(q.l[0] * x0 + q.l[1] * x1 + q.l[2] * x2);
+        weight.push_back(q.w * area);
+        body.push_back(spec.body);
+        bc.traction_point_expression.push_back(expr);
+      }
+    }
+    LOOM_CHECK(n_faces > 0, InputError,
+               spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary faces of the body mesh with "
+                                 << "every corner in the region, and this region holds none");
+  }
+  points.resize(Index(X.size()));
+  for (Index q = 0; q < points.X.size(); ++q) {
+    const auto i = std::size_t(q);
+    points.X[q] = X[i], points.volume[q] = weight[i], points.body[q] = body[i];
+  }
+}
+
 }  // namespace
 
 template <>
@@ -87,7 +133,7 @@ MpmModelT<3>::MpmModelT(const SceneSpec& spec) : scene(spec) {
         scene, particles.X.size(), [&](Index p) { return particles.body[p]; }, [&](Index p) { return Vec3(particles.X[p]); },
         [&](Index p, const Vec3& v) { particles.v[p] = v; });
   bc.per_node = mixed ? 4 : 3;
-  traction_points.resize(0);
+  build_traction_points_3d(scene, traction_points, bc);
   std::vector<Vec3> tracers;
   for (const auto& p : scene.probes)
     if (p.kind == ProbeKind::point) tracers.emplace_back(p.at.x(), p.at.y(), p.at_z);

@@ -62,11 +62,6 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
     const auto mpm = root.table("mpm");
     if (mpm.string("scheme") == "particle_newmark")  // read_mpm_options, which sets s.mpm.scheme, runs after this
       mpm.error("scheme", "scheme = \"particle_newmark\" is two-dimensional; 3D runs the grid Newmark scheme of seed 003");
-    const auto boundaries = root.array("boundary");
-    for (std::size_t k = 0; k < boundaries.size() && k < s.boundaries.size(); ++k)
-      if (s.boundaries[k].has_traction)
-        boundaries[k].error("traction", "method mpm carries tractions on traction points of boundary edges, which are two-dimensional; a 3D mpm "
-                                        "body takes body forces and prescribed displacements");
     const auto bodies = root.array("body");
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
       if (s.bodies[b].particles.kind != ParticleGenerator::none)

@@ -255,8 +255,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("boundary[].body", K::string, "Body the region selects from (may be left out when there is one body, and in methods mpm and mpm_fem, whose regions select grid and FEM nodes of any body)."));
   s.push_back(key("boundary[].region", K::table,
                   "Region: nodes inside the box (or of the group), and boundary edges with both end nodes inside. Method mpm: a "
-                  "displacement or pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges in the box "
-                  "(carried by traction points that move with the body).").require());
+                  "displacement or pressure acts on the grid nodes in the box, a traction on the body mesh's boundary edges (3D: faces) in "
+                  "the box (carried by traction points that move with the body).").require());
   s.push_back(key("boundary[].region.box", K::box, "[[xmin, ymin], [xmax, ymax]] in reference coordinates (3D: [[xmin, ymin, zmin], [xmax, ymax, zmax]]; bounds included, to 1e-9 of the body size). 3D: the region's boundary faces are those with every corner inside."));
   s.push_back(key("boundary[].region.group", K::string,
                   "Instead of box: a physical group of the body's mesh file (a curve, a point or a surface); its nodes, and the mid-node "

@@ -52,8 +52,8 @@ struct BoundaryConditions {
   std::vector<std::array<Index, D>> body_force;  // per body, per component; kNoIndex: zero
   std::vector<Tie> ties;                           // dofs tied to the mean of two others (PFEM TRI6, eq 24)
 
-  // Method mpm: the traction points (a Points store) sample the loaded boundary edges of the body mesh; each
-  // carries the traction expressions of its edge (weight: its share of the edge's reference length).
+  // Method mpm: the traction points (a Points store) sample the loaded boundary edges (3D: faces) of the body mesh;
+  // each carries the traction expressions of its edge (weight: its share of the edge's reference length or area).
   std::vector<std::array<Index, D>> traction_point_expression;
   std::vector<Vec<D>> particle_body_force;  // per particle, at the step time: b per unit mass
   std::vector<Vec<D>> fem_body_force;  // method mpm_fem: per Gauss point of the FEM cells (9 per cell, in cell order), b per unit mass

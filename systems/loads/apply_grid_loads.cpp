@@ -74,22 +74,22 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<D>&
     }
   });
 
-  // 3. Tractions at the traction points (2D: a 3D scene has none).
-  if constexpr (D == 2) for (Index q = 0; q < traction_points.X.size(); ++q) {
+  // 3. Tractions at the traction points.
+  for (Index q = 0; q < traction_points.X.size(); ++q) {
     const auto& e = bc.traction_point_expression[std::size_t(q)];
-    const Vec2& X = traction_points.X[q];
-    Vec2 t = Vec2::Zero();
-    for (int d = 0; d < 2; ++d)
-      if (e[std::size_t(d)] != kNoIndex) t[d] = bc.expressions[std::size_t(e[std::size_t(d)])](ctx.t, X.x(), X.y());
-    const Vec2 x = traction_points.position(q);
+    const Vec<D>& X = traction_points.X[q];
+    Vec<D> t = Vec<D>::Zero();
+    for (int d = 0; d < D; ++d)
+      if (e[std::size_t(d)] != kNoIndex) t[d] = evaluate_at<D>(bc.expressions[std::size_t(e[std::size_t(d)])], ctx.t, X);
+    const Vec<D> x = traction_points.position(q);
     Vec4 N;
     const Index c = host_active_cell(grid, grid_nodes, activity, traction_loc.cell[q], x, N);
     LOOM_CHECK(c != kNoIndex, RunError,
-               "traction point " << q << " (reference position (" << X.x() << ", " << X.y() << ")) at (" << x.x() << ", " << x.y()
-                                 << ") has no grid cell holding particles next to it at step " << ctx.step << ": its load cannot reach the body");
-    const Vec2 f = traction_points.volume[q] * t;
+               "traction point " << q << " (reference position " << Coordinates<D>{X} << ") at " << Coordinates<D>{x}
+                                 << " has no grid cell holding particles next to it at step " << ctx.step << ": its load cannot reach the body");
+    const Vec<D> f = traction_points.volume[q] * t;
     for (int a = 0; a < grid.stride; ++a)
-      for (int d = 0; d < 2; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];
+      for (int d = 0; d < D; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];
   }
 }
 

@@ -3,7 +3,7 @@
 //    each step undeformed); prescribed pressure dofs get g(t);
 //  - body forces act at the particles: f_I += N_I(x_p) m_p b(t, X_p) (X_p the particle's reference position);
 //  - dead-load tractions act at the traction points: f_I += N_I(x_q) w_q t(t, X_q), w_q the point's share of
-//    its edge's reference length (seed 003 Fig 3b: loads on non-conforming boundaries go to points of the
+//    its edge's reference length (3D: of its face's reference area) (seed 003 Fig 3b: loads on non-conforming boundaries go to points of the
 //    body), through the shape functions of its host active cell (host_active_cell: a traction point in a
 //    cell without particles uses the neighbouring active cell's, extended); none nearby is an anomaly
 //    (RunError).

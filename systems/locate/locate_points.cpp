@@ -157,17 +157,7 @@ Index find_quad9(const GridLayout& layout, const Cells& grid, const Nodes<2>& no
   }
 }
 
-// "(x, y[, z])" and the bounding box "[lo_x, hi_x] x [lo_y, hi_y][ x [lo_z, hi_z]]" in messages.
-template <int D>
-struct Coordinates {
-  const Vec<D>& v;
-};
-template <int D>
-std::ostream& operator<<(std::ostream& os, const Coordinates<D>& c) {
-  os << "(" << c.v[0];
-  for (int a = 1; a < D; ++a) os << ", " << c.v[a];
-  return os << ")";
-}
+// The bounding box "[lo_x, hi_x] x [lo_y, hi_y][ x [lo_z, hi_z]]" in messages.
 template <int D>
 struct BoundingBox {
   const GridLayoutT<D>& layout;

@@ -7,6 +7,7 @@
 // D = 2 (tri3, quad4, quad9 grids) and D = 3 (tet4 grids, engine/mesh/tet_background_grid.hpp).
 #pragma once
 
+#include <ostream>
 #include <type_traits>
 
 #include "engine/graph/step_context.hpp"
@@ -18,6 +19,18 @@
 #include "engine/store/points.hpp"
 
 namespace loom {
+
+// "(x, y[, z])" in messages: os << Coordinates<D>{x}.
+template <int D>
+struct Coordinates {
+  const Vec<D>& v;
+};
+template <int D>
+std::ostream& operator<<(std::ostream& os, const Coordinates<D>& c) {
+  os << "(" << c.v[0];
+  for (int a = 1; a < D; ++a) os << ", " << c.v[a];
+  return os << ")";
+}
 
 template <int D>
 void locate_points(const StepContext& ctx, const GridLayoutT<D>& layout, const Cells& grid, const Nodes<D>& grid_nodes,

@@ -5,7 +5,8 @@
 //  - the particle-to-grid projection conserves mass, linear and angular momentum (sum_I N_I(x_p) = 1 and
 //    sum_I N_I(x_p) x_I = x_p for linear cells: sum_I x_I x m_I v_I = sum_p x_p x m_p v_p);
 //  - material points at the centroids of a body-fitted grid reproduce the fem's linear tetrahedron (one
-//    Gauss point at the centroid) on a static nonlinear problem: the same equations, so the same solution;
+//    Gauss point at the centroid) on a static nonlinear problem with body forces and face tractions: the
+//    same equations, so the same solution;
 //  - the manufactured solution of seed 003 §6.1 extruded along z (scenes/mms_mpm_3d.toml) converges at the
 //    seed's 2D rates (Fig 2: about 2 for u and p) with PPP and ASGS: the L2 errors of the grid's u and p on
 //    n x n x 2 Kuhn lattices, integrated with the degree-6 tetrahedron rule in every cell;
@@ -14,7 +15,7 @@
 //  - the paper's columns at h = 0.25 (4 points per cell) over a few hundred steps stay near loom's FEM reference
 //    (docs/fem_3d.md, tet10 h = 0.25) within the discretisation error docs/mpm/mpm_3d.md measures, and never gain
 //    energy (the grid-Newmark transfers only dissipate);
-//  - 3D scene errors: a rule the tetrahedron does not have, tractions, the particle Newmark scheme.
+//  - 3D scene errors: a rule the tetrahedron does not have, the particle Newmark scheme.
 #include <gtest/gtest.h>
 
 #include <oneapi/tbb/global_control.h>
@@ -110,8 +111,10 @@ TEST(Mpm3d, ProjectionConservesMassAndMomentum) {
 }
 
 // A block on a clamped base, pulled down by gravity hard enough to be nonlinear (the top sags by ~10 % of the
-// height), one static step. With the grid equal to the body mesh and one particle at each cell's centroid,
-// the MPM's equations are the fem's linear tetrahedron with its one-point rule: the nodal displacements agree.
+// height) and loaded on its top face by a traction linear in x and y, one static step. With the grid equal to
+// the body mesh and one particle at each cell's centroid, the MPM's equations are the fem's linear tetrahedron
+// with its one-point rule, and its traction points (three a face, degree 2) integrate the face loads exactly
+// as the fem's face rule does: the nodal displacements agree.
 std::string sagging_block(const std::string& method) {
   const bool mpm = method == "mpm";
   std::string s = "[scene]\nname = \"sag\"\nmethod = \"" + method + "\"\ndimension = 3\n"
@@ -123,6 +126,8 @@ std::string sagging_block(const std::string& method) {
                   "mesh = { generator = \"box\", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 2.0], divisions = [2, 2, 4] }\n"
                   "[body_force]\nz = -60.0\nx = 20.0\n"
                   "[[boundary]]\nname = \"base\"\nregion = { box = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]] }\ndisplacement = { x = 0.0, y = 0.0, z = 0.0 }\n"
+                  "[[boundary]]\nname = \"top\"\nregion = { box = [[0.0, 0.0, 2.0], [1.0, 1.0, 2.0]] }\n"
+                  "traction = { x = \"10 * (1 + y)\", y = \"-5\", z = \"-30 * x\" }\n"
                   "[output]\nevery = 0\n";
   if (mpm) s += "[grid]\ngenerator = \"box\"\norigin = [0.0, 0.0, 0.0]\nsize = [1.0, 1.0, 2.0]\ndivisions = [2, 2, 4]\n";
   return s;
@@ -153,6 +158,46 @@ TEST(Mpm3d, CentroidParticlesOnABodyFittedGridReproduceTheLinearTetrahedron) {
   EXPECT_LE(worst, 1e-9 * scale);
   std::printf("[mpm 3d vs fem tet4] max |u| %.3f, worst difference %.1e; Newton fem %lld, mpm %lld\n", scale, worst, fs.newton_iterations,
               ms.newton_iterations);
+}
+
+// A free block (no body force) on a grid that does not fit it, pushed on its x = 0.7 face by a constant traction
+// and on its top by one growing in time. Its particles' momentum is the impulse of the loads, and the centre of
+// mass moves as a rigid body's under the constant part: the lumped grid mass and the partition of unity carry
+// the resultant of the traction points to the particles whatever the body's deformation (sum_I f_int,I = 0).
+// Newmark's trapezoidal velocity update integrates a load linear in t exactly; its position update does only
+// for the constant one (x).
+TEST(Mpm3d, TractionPointsGiveTheBodyTheImpulseOfTheLoads) {
+  const std::string text =
+      "[scene]\nname = \"pushed\"\nmethod = \"mpm\"\ndimension = 3\n"
+      "[time]\nintegrator = \"newmark\"\ndt = 0.02\nsteps = 25\ninitial_acceleration = \"equilibrium\"\n"
+      "[solver]\nresidual_relative = 1e-12\n"
+      "[[material]]\nname = \"m\"\nmodel = \"neo_hooke\"\nE = 200.0\nnu = 0.3\ndensity = 2.0\n"
+      "[[body]]\nname = \"block\"\nmaterial = \"m\"\nelement = \"p1\"\nparticles_per_cell = 4\n"
+      "mesh = { generator = \"box\", origin = [0.1, 0.2, 0.3], size = [0.6, 0.5, 0.4], divisions = [3, 2, 2] }\n"
+      "[grid]\ngenerator = \"box\"\norigin = [-2.05, -1.1, -1.3]\nsize = [4.0, 3.0, 3.0]\ndivisions = [12, 9, 9]\n"
+      "[[boundary]]\nname = \"side\"\nregion = { box = [[0.7, 0.2, 0.3], [0.7, 0.7, 0.7]] }\ntraction = { x = -6.0 }\n"
+      "[[boundary]]\nname = \"top\"\nregion = { box = [[0.1, 0.2, 0.7], [0.7, 0.7, 0.7]] }\ntraction = { z = \"4 * t\" }\n"
+      "[output]\nevery = 0\n";
+  auto run = testing::make_mpm_run<3>(testing::scene_from_text(text));
+  const Points<3>& particles = run->model().particles;
+  const Index n_traction = run->model().traction_points.X.size();
+  EXPECT_EQ(n_traction, 3 * (2 * 2 * 2 + 3 * 2 * 2));  // 3 points on each of the faces' triangles
+  double mass = 0.0;
+  Vec3 X0 = Vec3::Zero();
+  for (Index p = 0; p < particles.X.size(); ++p) mass += particles.mass[p], X0 += particles.mass[p] * particles.X[p];
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const double T = 0.02 * 25, A_side = 0.5 * 0.4, A_top = 0.6 * 0.5;
+  const Vec3 impulse(-6.0 * A_side * T, 0.0, 2.0 * A_top * T * T);
+  Vec3 P = Vec3::Zero(), x_cm = Vec3::Zero();
+  for (Index p = 0; p < particles.X.size(); ++p) P += particles.mass[p] * particles.v[p], x_cm += particles.mass[p] * particles.position(p);
+  x_cm = (x_cm - X0) / mass;
+  const double ux_exact = -6.0 * A_side / mass * T * T / 2;
+  EXPECT_LE((P - impulse).norm(), 1e-12 * impulse.norm());
+  EXPECT_NEAR(x_cm.x(), ux_exact, 1e-12 * std::abs(ux_exact));
+  EXPECT_GT(std::abs(ux_exact), 0.3);  // crossed a grid cell: the traction points moved with the body
+  std::printf("[mpm 3d tractions] %d traction points: impulse %.1e, centre of mass x %.1e (relative); Newton %lld\n", int(n_traction),
+              (P - impulse).norm() / impulse.norm(), std::abs(x_cm.x() - ux_exact) / std::abs(ux_exact), summary.newton_iterations);
 }
 
 // The extruded manufactured solution: u = (f(s), -f(s), 0), f = 0.01 s^2 e^s, s = x + y; p = E/3 sin 2 pi x cos 2 pi y.
