@@ -4,6 +4,8 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/UmfPackSupport>
 
+#include "engine/linalg/bisected_cholesky.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -159,9 +161,10 @@ std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<Ch
 std::unique_ptr<LinearSolver> make_umfpack_solver(double wide_above) { return std::make_unique<UmfpackSolver>(wide_above); }
 
 LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance) : kind_(kind), cg_tolerance_(cg_tolerance) {
-  solver_ = kind == LinearSolverKind::umfpack ? make_umfpack_solver()
-            : kind == LinearSolverKind::cg    ? make_cg_solver(cg_tolerance)
-                                              : make_cholmod_solver();
+  solver_ = kind == LinearSolverKind::umfpack            ? make_umfpack_solver()
+            : kind == LinearSolverKind::cg                 ? make_cg_solver(cg_tolerance)
+            : kind == LinearSolverKind::cholmod_bisected   ? make_bisected_cholmod_solver()
+                                                           : make_cholmod_solver();
 }
 
 LinearSolve::~LinearSolve() = default;
@@ -190,8 +193,8 @@ bool LinearSolve::factorize(const SparsePattern& pattern) {
       failure_ = name == "umfpack" ? "the tangent matrix is singular (UMFPACK met a zero pivot)"
                  : name == "cg"    ? "the tangent matrix has a diagonal entry <= 0, so it is not positive definite (solver.linear = \"cg\" "
                                      "needs a positive definite matrix; \"umfpack\" takes any)"
-                                   : "the tangent matrix is not positive definite, or singular (CHOLMOD; solver.linear = \"auto\" or \"umfpack\" "
-                                     "take indefinite matrices)";
+                                   : "the tangent matrix is not positive definite, or singular (" + name +
+                                         "; solver.linear = \"auto\" or \"umfpack\" take indefinite matrices)";
       return false;
     }
     // Not positive definite: the tangent is indefinite (instability, or a formulation without SPD
@@ -214,7 +217,10 @@ std::string LinearSolve::backend() const { return solver_->name(); }
 
 void LinearSolve::use_backend(const std::string& name) {
   if (name == solver_->name()) return;
-  solver_ = name == "umfpack" ? make_umfpack_solver() : name == "cg" ? make_cg_solver(cg_tolerance_) : make_cholmod_solver();
+  solver_ = name == "umfpack"            ? make_umfpack_solver()
+            : name == "cg"               ? make_cg_solver(cg_tolerance_)
+            : name == "cholmod_bisected" ? make_bisected_cholmod_solver()
+                                         : make_cholmod_solver();
   analysed_version_ = 0;
 }
 

@@ -12,16 +12,31 @@
 
 namespace loom {
 
-enum class LinearSolverKind { automatic, cholmod, umfpack, cg };
+enum class LinearSolverKind { automatic, cholmod, umfpack, cg, cholmod_bisected };
 
 // The back-ends that take only symmetric positive definite matrices.
-inline bool needs_spd(LinearSolverKind k) { return k == LinearSolverKind::cholmod || k == LinearSolverKind::cg; }
+inline bool needs_spd(LinearSolverKind k) {
+  return k == LinearSolverKind::cholmod || k == LinearSolverKind::cg || k == LinearSolverKind::cholmod_bisected;
+}
 inline const char* linear_solver_name(LinearSolverKind k) {
   switch (k) {
     case LinearSolverKind::automatic: return "auto (cholmod, umfpack if indefinite)";
     case LinearSolverKind::cholmod: return "cholmod";
     case LinearSolverKind::umfpack: return "umfpack";
     case LinearSolverKind::cg: return "cg (conjugate gradients, diagonal preconditioner)";
+    case LinearSolverKind::cholmod_bisected: return "cholmod_bisected (two halves concurrently, Schur complement of the separator)";
+  }
+  return "?";
+}
+
+// The scene's word for the kind (solver.linear).
+inline const char* linear_solver_key(LinearSolverKind k) {
+  switch (k) {
+    case LinearSolverKind::automatic: return "auto";
+    case LinearSolverKind::cholmod: return "cholmod";
+    case LinearSolverKind::umfpack: return "umfpack";
+    case LinearSolverKind::cg: return "cg";
+    case LinearSolverKind::cholmod_bisected: return "cholmod_bisected";
   }
   return "?";
 }

@@ -31,7 +31,7 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
   if (!has_body(scene, mixed_formulation)) return scene.solver.linear;
   const char* element = has_body(scene, has_dilatation) ? "p1p1_uphi" : has_body(scene, has_pressure) ? "es_up or fem_up" : "";
   LOOM_CHECK(!needs_spd(scene.solver.linear), InputError,
-             scene.solver.linear_where << ": error: solver.linear: " << (scene.solver.linear == LinearSolverKind::cg ? "cg" : "cholmod")
+             scene.solver.linear_where << ": error: solver.linear: " << linear_solver_key(scene.solver.linear)
                         << " needs a symmetric tangent, and element " << element << " has none; use umfpack or auto");
   return LinearSolverKind::umfpack;
 }

@@ -144,7 +144,7 @@ template <int D>
 void MpmModelT<D>::choose_linear_solver() {
   const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
   linear_solver = mixed || unsymmetric ? LinearSolverKind::umfpack : scene.solver.linear;
-  const char* chosen = scene.solver.linear == LinearSolverKind::cg ? "cg" : "cholmod";
+  const char* chosen = linear_solver_key(scene.solver.linear);
   LOOM_CHECK(!(unsymmetric && needs_spd(scene.solver.linear)), InputError,
              scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
                         << "makes it unsymmetric; use umfpack or auto");

@@ -167,7 +167,8 @@ class Loader {
     s.solver.linear = pick<LinearSolverKind>(t.string("linear"), {{"auto", LinearSolverKind::automatic},
                                                                   {"cholmod", LinearSolverKind::cholmod},
                                                                   {"umfpack", LinearSolverKind::umfpack},
-                                                                  {"cg", LinearSolverKind::cg}});
+                                                                  {"cg", LinearSolverKind::cg},
+                                                                  {"cholmod_bisected", LinearSolverKind::cholmod_bisected}});
     s.solver.linear_where = t.has("linear") ? t.where("linear") : t.where();
     s.solver.linear_tolerance = t.real("linear_tolerance");
     s.solver.tangent = pick<TangentUpdate>(t.string("tangent"), {{"every_iteration", TangentUpdate::every_iteration},

@@ -14,8 +14,9 @@ void add_solver_keys(std::vector<KeySpec>& s) {
   s.push_back(key("solver.linear", K::choice,
                   "Linear solver: cholmod (SPD), umfpack (general LU), auto (CHOLMOD, UMFPACK if not positive definite), cg (conjugate "
                   "gradients with the diagonal preconditioner, SPD: for systems too large to factorise, from about 3e5 dofs in 3D; "
-                  "slow near incompressibility; docs/solvers_3d.md).")
-                  .one_of({"auto", "cholmod", "umfpack", "cg"}).by_default("auto"));
+                  "slow near incompressibility; docs/solvers_3d.md), cholmod_bisected (SPD: CHOLMOD on the two halves of a bisection at once, "
+                  "joined by the separator's Schur complement: uses two cores on large 2D systems; perf/compare/README.md).")
+                  .one_of({"auto", "cholmod", "umfpack", "cg", "cholmod_bisected"}).by_default("auto"));
   s.push_back(key("solver.linear_tolerance", K::real,
                   "cg only: each linear solve stops at |K du + r| <= linear_tolerance |r|. Newton then converges as with a direct "
                   "solver while linear_tolerance is well below solver.residual_relative.")

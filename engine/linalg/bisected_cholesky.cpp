@@ -1,0 +1,321 @@
+// CHOLMOD on the two halves of a bisection, factorised concurrently and joined through the separator's
+// Schur complement (substructuring). Debian packages no shared-memory parallel sparse Cholesky (MUMPS-seq has no
+// OpenMP, SuperLU_DIST and PETSc are MPI), and on 2D meshes CHOLMOD's supernodal fronts are too small for its
+// BLAS threads to pay (perf/compare/README.md): the two halves of the top of a nested dissection are the
+// parallelism a two-core machine can use.
+//
+// With the dofs ordered [half 0 | half 1 | separator s], A = [A00 0 A0s; 0 A11 A1s; As0 As1 Ass], and
+//   S = Ass - sum_h Ash Ahh^-1 Ahs,   x_s = S^-1 (b_s - sum_h Ash Ahh^-1 b_h),   x_h = Ahh^-1 (b_h - Ahs x_s).
+// Ahs is non-zero only in the rows of half h's interface T (its dofs coupled to the separator). Each half is
+// ordered with T last (CHOLMOD's own choice for the interior, then T), so its factor ends with the dense block
+// L_TT, and L_TT L_TT^T is the Schur complement of the interior onto T: Ash Ahh^-1 Ahs = W^T W with
+// W = L_TT^-1 A_Ts, a triangular solve of size |T| instead of |T| solves with the whole factor.
+// The split is the same for every thread count (the halves run as two tasks), so results do not depend on it;
+// they differ from the unsplit CHOLMOD in round-off.
+#include "engine/linalg/bisected_cholesky.hpp"
+
+#include <cholmod.h>
+#include <oneapi/tbb/parallel_invoke.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace loom {
+namespace {
+
+// A CSC matrix in CHOLMOD's int layout, upper triangle (stype 1), whose values are gathered from A.
+struct UpperCsc {
+  std::vector<int> p, i;
+  std::vector<double> x;
+  std::vector<int> source;  // x[k] = A.valuePtr()[source[k]]
+  cholmod_sparse view(int n) {
+    cholmod_sparse s{};
+    s.nrow = s.ncol = std::size_t(n);
+    s.nzmax = x.size();
+    s.p = p.data(), s.i = i.data(), s.x = x.data();
+    s.stype = 1, s.itype = CHOLMOD_INT, s.xtype = CHOLMOD_REAL, s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1, s.packed = 1;
+    return s;
+  }
+};
+
+void set_relaxed_supernodes(cholmod_common& c) {  // as the unsplit back-end (linear_solver.cpp)
+  c.print = 0;
+  c.nrelax[0] = 8, c.nrelax[1] = 32, c.nrelax[2] = 96;
+  c.zrelax[0] = 0.8, c.zrelax[1] = 0.2, c.zrelax[2] = 0.1;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+}
+
+// One half: its dofs (interior, then interface T, each in the matrix's order), its factor, the coupling A_Ts.
+struct Half {
+  std::vector<int> dofs;
+  int n_interface = 0;
+  UpperCsc H;
+  cholmod_common c{};
+  cholmod_factor* L = nullptr;
+  cholmod_dense *B = nullptr, *PB = nullptr, *Z = nullptr, *X = nullptr, *PX = nullptr, *Y = nullptr, *E = nullptr;
+  Eigen::MatrixXd Ats;  // |T| x |s|
+  std::vector<std::array<int, 3>> ats_source;  // (source, row in T, column in s)
+  Eigen::MatrixXd Ltt;                         // the factor's trailing |T| x |T| block (lower)
+  Eigen::MatrixXd W;                           // L_TT^-1 A_Ts
+  Half() { cholmod_start(&c), set_relaxed_supernodes(c); }
+  Half(const Half&) = delete;
+  Half& operator=(const Half&) = delete;
+  ~Half() { release(); cholmod_finish(&c); }
+  void release() {
+    cholmod_free_factor(&L, &c);
+    for (cholmod_dense** d : {&B, &PB, &Z, &X, &PX, &Y, &E}) cholmod_free_dense(d, &c);
+  }
+  int size() const { return int(dofs.size()); }
+};
+
+class BisectedCholesky final : public LinearSolver {
+ public:
+  const char* name() const override { return "cholmod_bisected"; }
+
+  void analyze(const SparseMatrix& A) override {
+    const int n = int(A.rows());
+    // 1. The bisection: METIS's node separator of A's graph (CHOLMOD's Partition module).
+    std::vector<int> part(std::size_t(n), 0);
+    {
+      cholmod_common c{};
+      cholmod_start(&c);
+      c.print = 0;
+      cholmod_sparse a{};
+      a.nrow = a.ncol = std::size_t(n), a.nzmax = std::size_t(A.nonZeros());
+      a.p = const_cast<int*>(A.outerIndexPtr()), a.i = const_cast<int*>(A.innerIndexPtr()), a.x = nullptr;
+      a.stype = 1, a.itype = CHOLMOD_INT, a.xtype = CHOLMOD_PATTERN, a.dtype = CHOLMOD_DOUBLE, a.sorted = 1, a.packed = 1;
+      if (n > 1) cholmod_bisect(&a, nullptr, 0, 1, part.data(), &c);
+      const bool ok = c.status == CHOLMOD_OK;
+      cholmod_finish(&c);
+      if (!ok) std::fill(part.begin(), part.end(), 0);  // one "half": the whole matrix, no separator
+    }
+    // 2. Interfaces: dofs of a half coupled to the separator.
+    std::vector<char> interface(std::size_t(n), 0);
+    for (int j = 0; j < n; ++j)
+      if (part[std::size_t(j)] == 2)
+        for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+          if (part[std::size_t(it.row())] != 2) interface[std::size_t(it.row())] = 1;
+    separator_.clear();
+    local_.assign(std::size_t(n), -1);
+    for (auto& h : halves_) h.release(), h.dofs.clear(), h.ats_source.clear(), h.n_interface = 0;
+    for (int pass = 0; pass < 2; ++pass)  // interior dofs first, then the interface
+      for (int g = 0; g < n; ++g) {
+        const int ph = part[std::size_t(g)];
+        if (ph == 2 || interface[std::size_t(g)] != pass) continue;
+        Half& h = halves_[std::size_t(ph)];
+        local_[std::size_t(g)] = int(h.dofs.size());
+        h.dofs.push_back(g);
+        if (pass == 1) ++h.n_interface;
+      }
+    for (int g = 0; g < n; ++g)
+      if (part[std::size_t(g)] == 2) local_[std::size_t(g)] = int(separator_.size()), separator_.push_back(g);
+    const int k = int(separator_.size());
+    part_ = std::move(part);
+    // 3. Each half's upper triangle, its couplings to the separator; the separator's own block.
+    ass_source_.clear();
+    for (int j = 0; j < n; ++j) {
+      const int pj = part_[std::size_t(j)], lj = local_[std::size_t(j)];
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        const int i = int(it.row()), pi = part_[std::size_t(i)], li = local_[std::size_t(i)];
+        const int src = int(&it.value() - A.valuePtr());
+        if (pj == 2 && pi == 2) ass_source_.push_back({src, li, lj});
+        else if (pj == 2) {
+          Half& h = halves_[std::size_t(pi)];
+          h.ats_source.push_back({src, li - (h.size() - h.n_interface), lj});
+        }
+      }
+    }
+    for (auto& h : halves_) {
+      const int nh = h.size();
+      std::vector<std::vector<std::pair<int, int>>> cols(static_cast<std::size_t>(nh));  // (local row, source)
+      for (int lj = 0; lj < nh; ++lj) {
+        const int j = h.dofs[std::size_t(lj)];
+        for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+          const int i = int(it.row());
+          if (part_[std::size_t(i)] != part_[std::size_t(j)]) continue;
+          const int li = local_[std::size_t(i)];
+          if (li <= lj) cols[std::size_t(lj)].push_back({li, int(&it.value() - A.valuePtr())});
+        }
+      }
+      h.H.p.assign(1, 0), h.H.i.clear(), h.H.source.clear();
+      for (auto& col : cols) {
+        std::sort(col.begin(), col.end());
+        for (const auto& [li, src] : col) h.H.i.push_back(li), h.H.source.push_back(src);
+        h.H.p.push_back(int(h.H.i.size()));
+      }
+      h.H.x.assign(h.H.i.size(), 0.0);
+      h.Ats = Eigen::MatrixXd::Zero(h.n_interface, k);
+    }
+    tbb::parallel_invoke([&] { analyze_half(halves_[0]); }, [&] { analyze_half(halves_[1]); });
+  }
+
+  bool factorize(const SparseMatrix& A) override {
+    const double* a = A.valuePtr();
+    const int k = int(separator_.size());
+    bool ok[2] = {true, true};
+    auto run = [&](int s) {
+      Half& h = halves_[std::size_t(s)];
+      if (h.size() == 0) return;
+      for (std::size_t q = 0; q < h.H.x.size(); ++q) h.H.x[q] = a[h.H.source[q]];
+      cholmod_sparse view = h.H.view(h.size());
+      cholmod_factorize(&view, h.L, &h.c);
+      if (h.c.status < CHOLMOD_OK || h.L->minor < h.L->n) return void(ok[s] = false);  // not positive definite
+      h.Ats.setZero();
+      for (const auto& [src, r, col] : h.ats_source) h.Ats(r, col) = a[src];
+      h.Ltt = trailing_block(h);
+      h.W = h.Ats;
+      if (h.n_interface > 0 && k > 0) h.Ltt.triangularView<Eigen::Lower>().solveInPlace(h.W);
+    };
+    tbb::parallel_invoke([&] { run(0); }, [&] { run(1); });
+    if (!ok[0] || !ok[1]) return false;
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(k, k);
+    for (const auto& [src, r, col] : ass_source_) S(r, col) = a[src];
+    for (auto& h : halves_)
+      if (h.size() > 0 && h.n_interface > 0) S.noalias() -= h.W.transpose() * h.W;
+    schur_.compute(S);
+    if (k > 0 && schur_.info() != Eigen::Success) return false;
+    return true;
+  }
+
+  // Per half one forward and one backward sweep, as an unsplit solve: in the factor's order (T last),
+  // z = L^-1 P b_h; the interface part of y_h = A_hh^-1 b_h is y_T = L_TT^-T z_T; with x_s known, the forward
+  // sweep of b_h - A_hs x_s only changes z_T by -L_TT^-1 A_Ts x_s; then x_h = P^T L^-T z.
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    const int k = int(separator_.size());
+    x.resize(b.size());
+    bool ok[2] = {true, true};
+    Eigen::VectorXd part_rs[2] = {Eigen::VectorXd::Zero(k), Eigen::VectorXd::Zero(k)};
+    auto forward = [&](int s) {
+      Half& h = halves_[std::size_t(s)];
+      if (h.size() == 0) return;
+      double* hb = static_cast<double*>(h.B->x);
+      for (int l = 0; l < h.size(); ++l) hb[l] = b[h.dofs[std::size_t(l)]];
+      if (!cholmod_solve2(CHOLMOD_P, h.L, h.B, nullptr, &h.PB, nullptr, &h.Y, &h.E, &h.c) ||
+          !cholmod_solve2(CHOLMOD_L, h.L, h.PB, nullptr, &h.Z, nullptr, &h.Y, &h.E, &h.c))
+        return void(ok[s] = false);
+      if (k == 0 || h.n_interface == 0) return;
+      const auto zt = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(h.Z->x) + (h.size() - h.n_interface), h.n_interface);
+      const Eigen::VectorXd yt = h.Ltt.transpose().triangularView<Eigen::Upper>().solve(zt);
+      part_rs[s].noalias() = h.Ats.transpose() * yt;
+    };
+    tbb::parallel_invoke([&] { forward(0); }, [&] { forward(1); });
+    if (!ok[0] || !ok[1]) return false;
+    Eigen::VectorXd xs;
+    if (k > 0) {
+      Eigen::VectorXd rs(k);
+      for (int q = 0; q < k; ++q) rs[q] = b[separator_[std::size_t(q)]];
+      xs = schur_.solve(rs - part_rs[0] - part_rs[1]);
+      for (int q = 0; q < k; ++q) x[separator_[std::size_t(q)]] = xs[q];
+    }
+    auto backward = [&](int s) {
+      Half& h = halves_[std::size_t(s)];
+      if (h.size() == 0) return;
+      if (k > 0 && h.n_interface > 0)
+        Eigen::Map<Eigen::VectorXd>(static_cast<double*>(h.Z->x) + (h.size() - h.n_interface), h.n_interface).noalias() -= h.W * xs;
+      if (!cholmod_solve2(CHOLMOD_Lt, h.L, h.Z, nullptr, &h.PX, nullptr, &h.Y, &h.E, &h.c) ||
+          !cholmod_solve2(CHOLMOD_Pt, h.L, h.PX, nullptr, &h.X, nullptr, &h.Y, &h.E, &h.c))
+        return void(ok[s] = false);
+      const double* xh = static_cast<const double*>(h.X->x);
+      for (int l = 0; l < h.size(); ++l) x[h.dofs[std::size_t(l)]] = xh[l];
+    };
+    tbb::parallel_invoke([&] { backward(0); }, [&] { backward(1); });
+    return ok[0] && ok[1];
+  }
+
+  double rcond() override {
+    double r = 1.0;
+    for (auto& h : halves_)
+      if (h.size() > 0) r = std::min(r, cholmod_rcond(h.L, &h.c));
+    if (!separator_.empty()) {
+      const Eigen::VectorXd d = Eigen::MatrixXd(schur_.matrixL()).diagonal();
+      r = std::min(r, std::pow(d.minCoeff() / d.maxCoeff(), 2));
+    }
+    return r;
+  }
+
+  FactorSize factor_size() override {
+    const double k = double(separator_.size());
+    FactorSize f{k * (k + 1) / 2, k * k * k / 3};
+    for (auto& h : halves_)
+      if (h.size() > 0) f.entries += h.c.lnz, f.flops += h.c.fl + double(h.n_interface) * h.n_interface * k + 2.0 * h.n_interface * k * k;
+    return f;
+  }
+
+  // For tests: the sizes of the halves and of the separator.
+  std::array<int, 3> split() const { return {halves_[0].size(), halves_[1].size(), int(separator_.size())}; }
+
+ private:
+  // CHOLMOD's nested dissection of the half's interior (the rest of the dissection the bisection began; on the
+  // cantilever at 10^5 particles AMD's halves cost 2.8 + 3.7e8 flops against 2.5 + 2.4e8, the whole 4.6e8), then T
+  // as is, without the postorder that could move T; then the supernodal symbolic factorisation.
+  void analyze_half(Half& h) {
+    const int nh = h.size(), ni = nh - h.n_interface;
+    if (nh == 0) return;
+    std::vector<int> perm(static_cast<std::size_t>(nh));
+    for (int l = 0; l < nh; ++l) perm[std::size_t(l)] = l;
+    if (ni > 1) {
+      UpperCsc interior;
+      interior.p.assign(1, 0);
+      for (int lj = 0; lj < ni; ++lj) {
+        for (int q = h.H.p[std::size_t(lj)]; q < h.H.p[std::size_t(lj) + 1]; ++q) interior.i.push_back(h.H.i[std::size_t(q)]);
+        interior.p.push_back(int(interior.i.size()));
+      }
+      interior.x.assign(interior.i.size(), 0.0);
+      cholmod_sparse view = interior.view(ni);
+      view.xtype = CHOLMOD_PATTERN, view.x = nullptr;
+      h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_NESDIS, h.c.postorder = 1;
+      cholmod_factor* Li = cholmod_analyze(&view, &h.c);
+      if (!Li) throw std::runtime_error("cholmod_bisected: the ordering of a half failed");
+      const int* p = static_cast<const int*>(Li->Perm);
+      std::copy(p, p + ni, perm.begin());
+      cholmod_free_factor(&Li, &h.c);
+    }
+    h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_GIVEN, h.c.postorder = 0;
+    cholmod_sparse view = h.H.view(nh);
+    h.L = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &h.c);
+    if (!h.L) throw std::runtime_error("cholmod_bisected: the symbolic analysis of a half failed");
+    const int* p = static_cast<const int*>(h.L->Perm);
+    for (int l = ni; l < nh; ++l)
+      if (p[l] != l) throw std::logic_error("cholmod_bisected: CHOLMOD moved the interface off the end of the ordering");
+    h.B = cholmod_allocate_dense(std::size_t(nh), 1, std::size_t(nh), CHOLMOD_REAL, &h.c);
+  }
+
+  // L_TT: the last |T| columns of the supernodal factor, lower triangle, dense.
+  static Eigen::MatrixXd trailing_block(const Half& h) {
+    const int nh = h.size(), t = h.n_interface, off = nh - t;
+    Eigen::MatrixXd Ltt = Eigen::MatrixXd::Zero(t, t);
+    const cholmod_factor* L = h.L;
+    const int *super = static_cast<const int*>(L->super), *pi = static_cast<const int*>(L->pi), *px = static_cast<const int*>(L->px);
+    const int* Ls = static_cast<const int*>(L->s);
+    const double* Lx = static_cast<const double*>(L->x);
+    for (std::size_t s = 0; s < L->nsuper; ++s) {
+      const int k1 = super[s], k2 = super[s + 1];
+      if (k2 <= off) continue;
+      const int nsrow = pi[s + 1] - pi[s];
+      for (int j = std::max(k1, off); j < k2; ++j)
+        for (int r = j - k1; r < nsrow; ++r) Ltt(Ls[pi[s] + r] - off, j - off) = Lx[std::size_t(px[s]) + std::size_t(j - k1) * nsrow + r];
+    }
+    return Ltt;
+  }
+
+  std::array<Half, 2> halves_;
+  std::vector<int> part_, local_, separator_;
+  std::vector<std::array<int, 3>> ass_source_;
+  Eigen::LLT<Eigen::MatrixXd> schur_;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_bisected_cholmod_solver() { return std::make_unique<BisectedCholesky>(); }
+
+std::array<int, 3> bisected_cholmod_split(LinearSolver& solver) {
+  auto* s = dynamic_cast<BisectedCholesky*>(&solver);
+  return s ? s->split() : std::array<int, 3>{0, 0, 0};
+}
+
+}  // namespace loom
