@@ -5,6 +5,7 @@ system (from each run's timings.json): the side-by-side benchmark of perf/compar
     perf/compare/step_times.py cantilever [--loom build/loom] [--threads 1,2] [--repeat 3] [--csv out.csv]
     perf/compare/step_times.py fem | pfem | all
     perf/compare/step_times.py cantilever --loom OLD_LOOM,build/loom     (two builds, runs interleaved)
+    perf/compare/step_times.py cantilever --linear auto,cholmod_bisected (two linear solvers, interleaved)
 
 Problems (each a scene and the --set lists of its sizes):
   cantilever  perf/compare/cantilever_mpm.toml: the 10 m x 1 m linear elastic beam, implicit MPM with grid
@@ -77,6 +78,7 @@ def main():
     ap.add_argument("--loom", default=os.path.join(ROOT, "build/loom"), help="loom binary, or several separated by commas")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--linear", default="", help="solver.linear values to compare (separated by commas; default: the scene's)")
     ap.add_argument("--csv", help="also write the rows to this file")
     args = ap.parse_args()
     problems = list(PROBLEMS) if args.problem == "all" else [args.problem]
@@ -86,14 +88,15 @@ def main():
     print(header)
     for problem in problems:
         for label, scene, sets in PROBLEMS[problem]():
-            binaries = args.loom.split(",")
+            # Each variant: a binary and a solver.linear value (None: the scene's own).
+            binaries = [(b, lin) for b in args.loom.split(",") for lin in (args.linear.split(",") if args.linear else [None])]
             base = {}
             for threads in (int(x) for x in args.threads.split(",")):
                 runs = {b: [] for b in binaries}
                 for _ in range(args.repeat):
                     for b in binaries:
                         with tempfile.TemporaryDirectory() as out:
-                            runs[b].append(run_once(b, scene, sets, threads, out))
+                            runs[b].append(run_once(b[0], scene, sets + ([f"solver.linear={b[1]}"] if b[1] else []), threads, out))
                 for b in binaries:
                     runs[b].sort(key=lambda r: r[0]["wall"])
                 for b in binaries:
@@ -110,12 +113,12 @@ def main():
                     # The share of the Newton iterations spent outside the linear solver (assembly, update).
                     non_solver = 100.0 * (1.0 - timers["newton/solve"]["total"] / timers["newton"]["total"]) if "newton" in timers else 0.0
                     base.setdefault(b, ms)
-                    name = f"  {b}" if len(binaries) > 1 else ""
+                    name = f"  {b[0]}" + (f" {b[1]}" if b[1] else "") if len(binaries) > 1 else ""
                     print(f"{problem:10s} {label:>18s} {threads:3d} {ms:8.2f} {newton / steps:6.2f} {analyses:4d}/{steps:<4d} " +
                           " ".join(f"{v:10.1f}" if v is not None else f"{'-':>10s}" for v in share.values()) +
                           f" {100.0 - listed:6.1f} {non_solver:10.1f}" + (f"   speed-up {base[b] / ms:.2f}" if threads != 1 else "") + name)
                     sys.stdout.flush()
-                    rows.append({"binary": b, "problem": problem, "size": label, "threads": threads, "ms_per_step": round(ms, 3),
+                    rows.append({"binary": b[0], "linear": b[1] or "", "problem": problem, "size": label, "threads": threads, "ms_per_step": round(ms, 3),
                                  "newton_per_step": round(newton / steps, 3), "analyses": analyses, "steps": steps,
                                  "non_solver_share": round(non_solver, 2),
                                  **{c: round(v, 2) if v is not None else "" for c, v in share.items()}})
