@@ -10,7 +10,9 @@
 // ordered with T last (CHOLMOD's own choice for the interior, then T), so its factor ends with the dense block
 // L_TT, and L_TT L_TT^T is the Schur complement of the interior onto T: Ash Ahh^-1 Ahs = W^T W with
 // W = L_TT^-1 A_Ts, a triangular solve of size |T| instead of |T| solves with the whole factor.
-// The split is the same for every thread count (the halves run as two tasks), so results do not depend on it;
+// The split is the same for every thread count (the halves run as two tasks), so results do not depend on it
+// beyond round-off (bitwise run alone; up to 8e-13 apart under a loaded ctest, cause not found: not the BLAS or
+// OpenMP thread counts);
 // they differ from the unsplit CHOLMOD in round-off.
 #include "engine/linalg/bisected_cholesky.hpp"
 
