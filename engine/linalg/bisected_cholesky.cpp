@@ -10,10 +10,9 @@
 // ordered with T last (CHOLMOD's own choice for the interior, then T), so its factor ends with the dense block
 // L_TT, and L_TT L_TT^T is the Schur complement of the interior onto T: Ash Ahh^-1 Ahs = W^T W with
 // W = L_TT^-1 A_Ts, a triangular solve of size |T| instead of |T| solves with the whole factor.
-// The split is the same for every thread count (the halves run as two tasks), so results do not depend on it
-// beyond round-off (bitwise run alone; up to 8e-13 apart under a loaded ctest, cause not found: not the BLAS or
-// OpenMP thread counts);
-// they differ from the unsplit CHOLMOD in round-off.
+// The split is the same for every thread count (the halves run as two tasks), and the halves are ordered one
+// after the other (METIS shares the C library's rand() state), so results do not depend on the thread count,
+// bit for bit; they differ from the unsplit CHOLMOD in round-off.
 #include "engine/linalg/bisected_cholesky.hpp"
 
 #include <cholmod.h>
@@ -37,7 +36,7 @@ struct UpperCsc {
   cholmod_sparse view(int n) {
     cholmod_sparse s{};
     s.nrow = s.ncol = std::size_t(n);
-    s.nzmax = x.size();
+    s.nzmax = i.size();
     s.p = p.data(), s.i = i.data(), s.x = x.data();
     s.stype = 1, s.itype = CHOLMOD_INT, s.xtype = CHOLMOD_REAL, s.dtype = CHOLMOD_DOUBLE;
     s.sorted = 1, s.packed = 1;
@@ -56,6 +55,7 @@ void set_relaxed_supernodes(cholmod_common& c) {  // as the unsplit back-end (li
 struct Half {
   std::vector<int> dofs;
   int n_interface = 0;
+  std::vector<int> perm;  // the fill-reducing order of dofs
   UpperCsc H;
   cholmod_common c{};
   cholmod_factor* L = nullptr;
@@ -153,6 +153,10 @@ class BisectedCholesky final : public LinearSolver {
       h.H.x.assign(h.H.i.size(), 0.0);
       h.Ats = Eigen::MatrixXd::Zero(h.n_interface, k);
     }
+    // The orderings one after the other: METIS draws from the C library's single rand() state (Debian's METIS
+    // is built on srand/rand), so two at once interleave their draws as the scheduler chooses and the orderings,
+    // hence the round-off, would change from run to run. The symbolic factorisations then run at once.
+    for (auto& h : halves_) order_interior(h);
     tbb::parallel_invoke([&] { analyze_half(halves_[0]); }, [&] { analyze_half(halves_[1]); });
   }
 
@@ -254,32 +258,35 @@ class BisectedCholesky final : public LinearSolver {
  private:
   // CHOLMOD's nested dissection of the half's interior (the rest of the dissection the bisection began; on the
   // cantilever at 10^5 particles AMD's halves cost 2.8 + 3.7e8 flops against 2.5 + 2.4e8, the whole 4.6e8), then T
-  // as is, without the postorder that could move T; then the supernodal symbolic factorisation.
-  void analyze_half(Half& h) {
+  // as is.
+  static void order_interior(Half& h) {
+    const int nh = h.size(), ni = nh - h.n_interface;
+    h.perm.resize(static_cast<std::size_t>(nh));
+    for (int l = 0; l < nh; ++l) h.perm[std::size_t(l)] = l;
+    if (ni <= 1) return;
+    UpperCsc interior;
+    interior.p.assign(1, 0);
+    for (int lj = 0; lj < ni; ++lj) {
+      for (int q = h.H.p[std::size_t(lj)]; q < h.H.p[std::size_t(lj) + 1]; ++q) interior.i.push_back(h.H.i[std::size_t(q)]);
+      interior.p.push_back(int(interior.i.size()));
+    }
+    cholmod_sparse view = interior.view(ni);
+    view.xtype = CHOLMOD_PATTERN, view.x = nullptr;
+    h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_NESDIS, h.c.postorder = 1;
+    cholmod_factor* Li = cholmod_analyze(&view, &h.c);
+    if (!Li) throw std::runtime_error("cholmod_bisected: the ordering of a half failed");
+    const int* p = static_cast<const int*>(Li->Perm);
+    std::copy(p, p + ni, h.perm.begin());
+    cholmod_free_factor(&Li, &h.c);
+  }
+
+  // The supernodal symbolic factorisation in the given order, without the postorder that could move T.
+  static void analyze_half(Half& h) {
     const int nh = h.size(), ni = nh - h.n_interface;
     if (nh == 0) return;
-    std::vector<int> perm(static_cast<std::size_t>(nh));
-    for (int l = 0; l < nh; ++l) perm[std::size_t(l)] = l;
-    if (ni > 1) {
-      UpperCsc interior;
-      interior.p.assign(1, 0);
-      for (int lj = 0; lj < ni; ++lj) {
-        for (int q = h.H.p[std::size_t(lj)]; q < h.H.p[std::size_t(lj) + 1]; ++q) interior.i.push_back(h.H.i[std::size_t(q)]);
-        interior.p.push_back(int(interior.i.size()));
-      }
-      interior.x.assign(interior.i.size(), 0.0);
-      cholmod_sparse view = interior.view(ni);
-      view.xtype = CHOLMOD_PATTERN, view.x = nullptr;
-      h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_NESDIS, h.c.postorder = 1;
-      cholmod_factor* Li = cholmod_analyze(&view, &h.c);
-      if (!Li) throw std::runtime_error("cholmod_bisected: the ordering of a half failed");
-      const int* p = static_cast<const int*>(Li->Perm);
-      std::copy(p, p + ni, perm.begin());
-      cholmod_free_factor(&Li, &h.c);
-    }
     h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_GIVEN, h.c.postorder = 0;
     cholmod_sparse view = h.H.view(nh);
-    h.L = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &h.c);
+    h.L = cholmod_analyze_p(&view, h.perm.data(), nullptr, 0, &h.c);
     if (!h.L) throw std::runtime_error("cholmod_bisected: the symbolic analysis of a half failed");
     const int* p = static_cast<const int*>(h.L->Perm);
     for (int l = ni; l < nh; ++l)

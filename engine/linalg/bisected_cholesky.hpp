@@ -1,6 +1,6 @@
 // A sparse Cholesky back-end for two cores: CHOLMOD on the two halves of a METIS bisection, factorised and
 // solved concurrently, joined by the dense Schur complement of the separator (bisected_cholesky.cpp derives it).
-// SPD only; results differ from the unsplit CHOLMOD in round-off and do not depend on the thread count beyond round-off.
+// SPD only; results differ from the unsplit CHOLMOD in round-off and do not depend on the thread count (bit for bit).
 #pragma once
 
 #include <array>

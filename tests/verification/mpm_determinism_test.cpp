@@ -87,8 +87,8 @@ TEST_P(MpmDeterminism, OneAndTwoThreadsGiveTheSameResult) {
               GetParam(), one.u.size(), int(one.changes), one.rebuilds, worst);
 }
 
-// The bisected CHOLMOD back-end runs its two halves as two tasks: its results do not depend on the thread count
-// beyond round-off (not bitwise under load: cause open), and differ from the unsplit CHOLMOD's in round-off only (the two factorisations order differently).
+// The bisected CHOLMOD back-end runs its two halves as two tasks: its results do not depend on the thread count,
+// bit for bit, and differ from the unsplit CHOLMOD's in round-off only (the two factorisations order differently).
 // The SPD case: the benchmark cantilever (linear elastic, displacement grid; perf/compare), 25 of its steps.
 TEST(MpmDeterminismBisected, BisectedCholmodIsThreadIndependentAndAgreesWithCholmod) {
   const std::string path = verification::scene_path("../perf/compare/cantilever_mpm.toml");
@@ -103,7 +103,7 @@ TEST(MpmDeterminismBisected, BisectedCholmodIsThreadIndependentAndAgreesWithChol
   EXPECT_EQ(one.summary.linear_solver, "cholmod_bisected");
   EXPECT_GE(one.rebuilds, 1);
   const double threads = worst_difference(one, two);
-  EXPECT_LE(threads, 1e-11);  // round-off: observed 0 run alone, up to 8.4e-13 under a loaded ctest (cause open)
+  EXPECT_EQ(threads, 0.0);
   const double to_cholmod = worst_difference(ref, one);
   EXPECT_LE(to_cholmod, 1e-9);
   std::printf("[mpm determinism] bisected cholmod: 1 vs 2 threads %.1e; against cholmod %.1e\n", threads, to_cholmod);
