@@ -7,12 +7,12 @@
 // With the dofs ordered [half 0 | half 1 | separator s], A = [A00 0 A0s; 0 A11 A1s; As0 As1 Ass], and
 //   S = Ass - sum_h Ash Ahh^-1 Ahs,   x_s = S^-1 (b_s - sum_h Ash Ahh^-1 b_h),   x_h = Ahh^-1 (b_h - Ahs x_s).
 // Ahs is non-zero only in the rows of half h's interface T (its dofs coupled to the separator). Each half is
-// ordered with T last (CHOLMOD's own choice for the interior, then T), so its factor ends with the dense block
+// ordered with T last (AMD on the interior, then T), so its factor ends with the dense block
 // L_TT, and L_TT L_TT^T is the Schur complement of the interior onto T: Ash Ahh^-1 Ahs = W^T W with
 // W = L_TT^-1 A_Ts, a triangular solve of size |T| instead of |T| solves with the whole factor.
-// The split is the same for every thread count (the halves run as two tasks), and the halves are ordered one
-// after the other (METIS shares the C library's rand() state), so results do not depend on the thread count,
-// bit for bit; they differ from the unsplit CHOLMOD in round-off.
+// The split is the same for every thread count (the halves run as two tasks; the one METIS call, the bisection,
+// runs alone: METIS shares the C library's rand() state), so results do not depend on the thread count, bit for
+// bit; they differ from the unsplit CHOLMOD in round-off.
 #include "engine/linalg/bisected_cholesky.hpp"
 
 #include <cholmod.h>
@@ -153,10 +153,6 @@ class BisectedCholesky final : public LinearSolver {
       h.H.x.assign(h.H.i.size(), 0.0);
       h.Ats = Eigen::MatrixXd::Zero(h.n_interface, k);
     }
-    // The orderings one after the other: METIS draws from the C library's single rand() state (Debian's METIS
-    // is built on srand/rand), so two at once interleave their draws as the scheduler chooses and the orderings,
-    // hence the round-off, would change from run to run. The symbolic factorisations then run at once.
-    for (auto& h : halves_) order_interior(h);
     tbb::parallel_invoke([&] { analyze_half(halves_[0]); }, [&] { analyze_half(halves_[1]); });
   }
 
@@ -256,9 +252,11 @@ class BisectedCholesky final : public LinearSolver {
   std::array<int, 3> split() const { return {halves_[0].size(), halves_[1].size(), int(separator_.size())}; }
 
  private:
-  // CHOLMOD's nested dissection of the half's interior (the rest of the dissection the bisection began; on the
-  // cantilever at 10^5 particles AMD's halves cost 2.8 + 3.7e8 flops against 2.5 + 2.4e8, the whole 4.6e8), then T
-  // as is.
+  // AMD on the half's interior, then T as is. Not nested dissection, though it fills less (the cantilever at 10^5
+  // particles: halves of 2.5 + 2.4e8 flops against AMD's 2.8 + 3.7e8, the whole 4.6e8): Debian's METIS draws
+  // from the C library's single rand() state, so two orderings at once interleave their draws as the scheduler
+  // chooses and the round-off changes from run to run, and one after the other they took 200 ms of an analysis
+  // against AMD's 48 ms; with 23 analyses in its 120 steps the cantilever ran 15 % faster on two threads with AMD.
   static void order_interior(Half& h) {
     const int nh = h.size(), ni = nh - h.n_interface;
     h.perm.resize(static_cast<std::size_t>(nh));
@@ -272,7 +270,7 @@ class BisectedCholesky final : public LinearSolver {
     }
     cholmod_sparse view = interior.view(ni);
     view.xtype = CHOLMOD_PATTERN, view.x = nullptr;
-    h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_NESDIS, h.c.postorder = 1;
+    h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_AMD, h.c.postorder = 1;
     cholmod_factor* Li = cholmod_analyze(&view, &h.c);
     if (!Li) throw std::runtime_error("cholmod_bisected: the ordering of a half failed");
     const int* p = static_cast<const int*>(Li->Perm);
@@ -280,10 +278,11 @@ class BisectedCholesky final : public LinearSolver {
     cholmod_free_factor(&Li, &h.c);
   }
 
-  // The supernodal symbolic factorisation in the given order, without the postorder that could move T.
+  // The ordering, then the supernodal symbolic factorisation in it, without the postorder that could move T.
   static void analyze_half(Half& h) {
     const int nh = h.size(), ni = nh - h.n_interface;
     if (nh == 0) return;
+    order_interior(h);
     h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_GIVEN, h.c.postorder = 0;
     cholmod_sparse view = h.H.view(nh);
     h.L = cholmod_analyze_p(&view, h.perm.data(), nullptr, 0, &h.c);
