@@ -14,13 +14,19 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
   double t = ctx.t;
   result.last_converged_step = range.first_step - 1;
   result.last_converged_time = t;
+  // Fixed steps end at t = n dt, counted from t = 0 (no sum of dt's to drift). A run restarted with another dt
+  // than its checkpoint's (its time is off that grid) counts them from the checkpoint's time instead: counted
+  // from 0, its first step would run from the checkpoint's time to n dt at once.
+  const bool on_grid = t == double(range.first_step - 1) * dt;
+  const int step0 = on_grid ? 0 : range.first_step - 1;
+  const double t0 = on_grid ? 0.0 : t;
   for (int step = range.first_step; step <= steps; ++step) {
     if (interrupt_requested()) {
       result.interrupted_by = interrupt_signal();
       return result;
     }
     ctx.t = t;
-    const double t_end = callbacks.step_size ? std::min(t + callbacks.step_size(ctx), callbacks.end_time) : double(step) * dt;
+    const double t_end = callbacks.step_size ? std::min(t + callbacks.step_size(ctx), callbacks.end_time) : t0 + double(step - step0) * dt;
     double h = callbacks.step_size ? t_end - t : dt;
     int halvings = 0;
     status.step_iterations = 0;

@@ -232,6 +232,32 @@ TEST(Restart, ContinuingADirectoryThatWentPastItsCheckpointRewritesTheSameFiles)
   EXPECT_EQ(parse_json(read_text(dir.file("run.json"))).at("restarted_from_step").number, 90.0);
 }
 
+// A run continued with another time step (a slow flow after its pouring, say) goes on from the checkpoint's time
+// in steps of the new size. Its steps once ended at n dt counted from t = 0, so the first continued step ran
+// from the checkpoint's time to n dt_new at once, or, with n dt_new behind it, the steps did nothing.
+TEST(Restart, ANewTimeStepGoesOnFromTheCheckpointsTime) {
+  TempDir dir("restart_dt");
+  const std::string scene = kSource + "/tests/stress/scenes/cantilever_release.toml";
+  const Command stop = run_loom({"run", scene, "--quiet", "--out", dir.path(), "--set", "time.steps=30", "--set", "output.every=0", "--stop-after", "10"});
+  ASSERT_EQ(stop.exit_code, 0) << stop.err;
+  for (const char* dt : {"0.05", "0.4"}) {
+    SCOPED_TRACE(dt);
+    const std::string part = dir.file(std::string("dt_") + dt);
+    std::filesystem::create_directories(part);
+    std::filesystem::copy(dir.file("checkpoint_000010.loom"), part + "/checkpoint_000010.loom");
+    std::filesystem::copy(dir.file("probes.csv"), part + "/probes.csv");
+    const Command c = run_loom({"run", scene, "--quiet", "--restart", part, "--set", "time.steps=30", "--set", "output.every=0",
+                                "--set", std::string("time.dt=") + dt});
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    EXPECT_NE(c.err.find("differ from those of the run that wrote the checkpoint"), std::string::npos) << c.err;
+    const auto time = read_probes(part + "/probes.csv").column("time");
+    ASSERT_EQ(time.size(), 31u);
+    EXPECT_NEAR(time[10], 1.0, 1e-12);
+    for (int n = 11; n <= 30; ++n) EXPECT_NEAR(time[std::size_t(n)], 1.0 + (n - 10) * std::stod(dt), 1e-12) << "step " << n;
+    EXPECT_EQ(parse_json(read_text(part + "/run.json")).at("status").string, "completed");
+  }
+}
+
 // Interrupted before its first step: the checkpoint of step 0 continues like a fresh run (step 0's row and
 // frame are not written twice), and its directory can be continued again.
 TEST(Restart, ACheckpointOfStepZeroContinuesLikeAFreshRun) {
