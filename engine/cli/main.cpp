@@ -118,7 +118,7 @@ void print_probes(const loom::SceneSpec& scene, const loom::RunSummary& summary,
   std::size_t width = 0;
   for (const auto& p : scene.probes) width = std::max(width, p.name.size());
   std::cout << "probes at step " << summary.last_converged_step << " (t = "
-            << (scene.time.adaptive_probe != loom::kNoIndex ? summary.last_converged_time : summary.last_converged_step * scene.time.dt) << "):\n";
+            << summary.last_step_time << "):\n";
   for (std::size_t k = 0; k < values.size(); ++k) {
     char value[32];
     std::snprintf(value, sizeof value, "%.6g", values[k]);
@@ -160,7 +160,7 @@ int run(const Args& a) {
   const std::string steps = loom::count_of(summary.steps_done, "step");
   if (!summary.converged) {
     // The last converged state may lie inside the failed step (converged sub-steps before a cut-back gave up).
-    const double step_end = scene.time.adaptive_probe != loom::kNoIndex ? summary.last_converged_time : summary.last_converged_step * scene.time.dt;
+    const double step_end = summary.last_step_time;
     std::cerr << "loom: the run failed: " << summary.failure << "\n"
               << "loom: last converged step " << summary.last_converged_step << " (t = " << step_end << ")";
     if (summary.last_converged_time > step_end * (1 + 1e-12) + 1e-300)

@@ -45,6 +45,7 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
     result.failed_dt = ctx.dt;
     result.last_converged_step = std::max(result.last_converged_step, completed);
     result.last_converged_time = std::max(result.last_converged_time, completed_time);
+    result.last_step_time = std::max(result.last_step_time, completed_time);
     result.failure = e.what();
   };
   try {
@@ -77,10 +78,9 @@ void summarise_run(const TimeLoopResult& result, const StepStatus& status, const
   summary.settled = result.settled;
   summary.steps_done = result.last_converged_step;
   summary.last_converged_step = result.last_converged_step;
-  summary.last_converged_time = schedule.adaptive ? result.last_converged_time
-                                : result.completed ? double(result.last_converged_step) * schedule.dt
-                                : summary.converged ? double(result.last_converged_step) * schedule.dt
-                                                    : result.last_converged_time;
+  // The loop's own times: a restart with another dt has steps off the grid n dt.
+  summary.last_converged_time = result.last_converged_time;
+  summary.last_step_time = result.last_step_time;
   summary.newton_iterations = status.total_iterations;
   summary.cutbacks = status.total_cutbacks;
   if (summary.converged) return;

@@ -24,7 +24,6 @@ struct RunSchedule {
   bool restarted = false;        // continued from the checkpoint of step first_step - 1 (step 0 is not written again)
   int first_step = 1;
   int stop_after = 0;            // stop after this step as if interrupted (0: run to the end)
-  bool adaptive = false;         // time.adaptive_dt: steps of varying size (the time reached is not step * dt)
 };
 
 struct RunHooks {

@@ -16,7 +16,8 @@ struct RunSummary {
   int steps_requested = 0;
   int steps_done = 0;               // scene steps completed
   int last_converged_step = 0;
-  double last_converged_time = 0.0;
+  double last_converged_time = 0.0;  // may lie inside the failed step (its sub-steps that converged)
+  double last_step_time = 0.0;       // the end of step last_converged_step
   long long newton_iterations = 0;  // linear solves over the run
   int cutbacks = 0;                 // over the whole run (a restarted run counts those before its checkpoint)
   double wall_seconds = 0.0;

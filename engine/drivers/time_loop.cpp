@@ -13,7 +13,7 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
   TimeLoopResult result;
   double t = ctx.t;
   result.last_converged_step = range.first_step - 1;
-  result.last_converged_time = t;
+  result.last_converged_time = result.last_step_time = t;
   // Fixed steps end at t = n dt, counted from t = 0 (no sum of dt's to drift). A run restarted with another dt
   // than its checkpoint's (its time is off that grid) counts them from the checkpoint's time instead: counted
   // from 0, its first step would run from the checkpoint's time to n dt at once.
@@ -65,6 +65,7 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
       h = 0.5 * ctx.dt;
     }
     result.last_converged_step = step;
+    result.last_step_time = t;
     if (callbacks.step_done) callbacks.step_done(ctx, status);
     if (callbacks.settled && callbacks.settled(ctx)) {
       result.completed = result.settled = true;

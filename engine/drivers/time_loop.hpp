@@ -21,6 +21,7 @@ struct TimeLoopResult {
   bool completed = false;
   int last_converged_step = 0;
   double last_converged_time = 0.0;  // time of the last committed state (may be inside a failed step)
+  double last_step_time = 0.0;       // time at the end of step last_converged_step
   int failed_step = 0;
   double failed_dt = 0.0;
   bool anomaly = false;              // a system threw (RunError): no cut-back is tried

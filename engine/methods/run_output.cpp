@@ -41,7 +41,6 @@ RunSchedule start_run(const SceneSpec& scene, const RunOptions& options,
   RunSchedule schedule{scene.time.dt, scene.time.steps, scene.solver.max_cutbacks, options.progress, options.log};
   schedule.checkpoint_every = options.write_files ? scene.output.checkpoint_every : 0;
   schedule.stop_after = options.stop_after;
-  schedule.adaptive = scene.time.adaptive_probe != kNoIndex;
   std::optional<CheckpointHeader> restart;
   if (!options.restart_file.empty()) {
     restart = restore(CheckpointReader(options.restart_file));

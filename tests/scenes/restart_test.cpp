@@ -254,7 +254,9 @@ TEST(Restart, ANewTimeStepGoesOnFromTheCheckpointsTime) {
     ASSERT_EQ(time.size(), 31u);
     EXPECT_NEAR(time[10], 1.0, 1e-12);
     for (int n = 11; n <= 30; ++n) EXPECT_NEAR(time[std::size_t(n)], 1.0 + (n - 10) * std::stod(dt), 1e-12) << "step " << n;
-    EXPECT_EQ(parse_json(read_text(part + "/run.json")).at("status").string, "completed");
+    const Json run = parse_json(read_text(part + "/run.json"));
+    EXPECT_EQ(run.at("status").string, "completed");
+    EXPECT_NEAR(run.at("last_converged_time").number, 1.0 + 20 * std::stod(dt), 1e-12);
   }
 }
 
