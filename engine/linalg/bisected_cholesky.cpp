@@ -264,8 +264,11 @@ class BisectedCholesky final : public LinearSolver {
       }
       cholmod_sparse view = interior.view(ni, 1);
       view.xtype = CHOLMOD_PATTERN, view.x = nullptr;
-      h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_AMD, h.c.postorder = 1;
+      // Only the postordered AMD permutation is read: the simplicial analysis skips the supernodal pattern, which
+      // the half's own analysis below builds.
+      h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_AMD, h.c.postorder = 1, h.c.supernodal = CHOLMOD_SIMPLICIAL;
       cholmod_factor* Li = cholmod_analyze(&view, &h.c);
+      h.c.supernodal = CHOLMOD_SUPERNODAL;
       if (!Li) throw std::runtime_error("cholmod_bisected: the ordering of a half failed");
       const int* p = static_cast<const int*>(Li->Perm);
       std::copy(p, p + ni, perm.begin());
