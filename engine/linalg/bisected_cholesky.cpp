@@ -234,6 +234,13 @@ class BisectedCholesky final : public LinearSolver {
   // from the C library's single rand() state, so two orderings at once interleave their draws as the scheduler
   // chooses and the round-off changes from run to run, and one after the other they took 200 ms of an analysis
   // against AMD's 48 ms; with 23 analyses in its 120 steps the cantilever ran 15 % faster on two threads with AMD.
+  // Between the two (tried 2026-11-29, 10^5 particles, 2 threads, 3 alternated runs of 120 steps): one or two more
+  // METIS bisections of each half (alone), then CAMD with the separators as constraint sets, cut the larger half
+  // to 2.9-3.4e8 flops and (two levels) the numeric factorisation by up to 9 %, but each level adds 20-25 ms of
+  // serial METIS to every analysis, and the run was no faster (16.7-17.1 s against 17.0-17.6 s with AMD).
+  // Breadth-first level structures instead of METIS (George's automatic nested dissection: deterministic, so it
+  // could run in the two tasks) filled twice as much (7e8 flops a half): the ghost-penalty couplings thicken the
+  // levels and near-square parts are cut along L-shaped levels.
   // The half's block is then stored permuted, as the lower triangle in the factor's order, and analysed in its
   // natural order: CHOLMOD factorises such a matrix as it is, where for a permuted one it would build
   // tril(P A P^T) by a transpose at every factorisation (3.8 % of a cantilever step at 10^5 particles).
