@@ -40,7 +40,10 @@ FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
     pfem_settings_.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
     pfem_settings_.every = p.every;
     pfem_settings_.remesh.surface = p.constrained_surface ? SurfaceMode::constrained : SurfaceMode::alpha;
-    pfem_settings_.edits = {p.insert_above, p.remove_below};
+    pfem_settings_.edits = {p.insert_above, p.remove_below, {}};
+    for (const WallSpec& w : scene_.walls)
+      if (w.spacing > 0.0)
+        for (const auto& [point, normal] : w.planes) pfem_settings_.edits.graded.push_back({point, normal, w.spacing, w.body});
     topology_ = initial_topology(m_);
     check_inlets();
   }

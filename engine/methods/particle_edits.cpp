@@ -34,8 +34,20 @@ std::vector<MeshEdge> edges_of(const std::vector<Index>& t, const std::vector<Ve
   return out;
 }
 
+// The length below which an edge is removed and above which it is split, per edge (its midpoint's spacing).
+struct EdgeLimits {
+  const ParticleEditSettings& settings;
+  Index body;
+  double h0;
+  const std::vector<Vec2>& x;
+  bool uniform() const { return settings.graded.empty(); }
+  double spacing(const MeshEdge& e) const {
+    return uniform() ? h0 : local_spacing(settings, body, h0, 0.5 * (x[std::size_t(e.a)] + x[std::size_t(e.b)]));
+  }
+};
+
 // Removal on one body's triangles `t` (edited in place; dead triangles flagged).
-void plan_removals(double limit, const std::vector<Vec2>& x, const std::vector<Edge>& boundary, const std::vector<char>& fixed,
+void plan_removals(const EdgeLimits& limits, const std::vector<Vec2>& x, const std::vector<Edge>& boundary, const std::vector<char>& fixed,
                    std::vector<Index>& t, std::vector<char>& dead, std::vector<char>& remove, std::vector<Index>& merge_into) {
   std::vector<char> on_surface(x.size(), 0), touched(x.size(), 0);
   std::set<EdgeKey> surface_edge;
@@ -44,7 +56,11 @@ void plan_removals(double limit, const std::vector<Vec2>& x, const std::vector<E
   for (std::size_t k = 0; k < t.size() / 3; ++k)
     for (int s = 0; s < 3; ++s) incident[t[3 * k + std::size_t(s)]].push_back(k);
   for (const MeshEdge& e : edges_of(t, x, dead)) {
-    if (!(e.length < limit)) break;
+    // Shortest first: with one spacing the first edge long enough ends the search.
+    if (!(e.length < limits.settings.remove_below * limits.spacing(e))) {
+      if (limits.uniform()) break;
+      continue;
+    }
     Index keep = e.a, gone = e.b;
     if (touched[std::size_t(keep)] || touched[std::size_t(gone)]) continue;
     const bool fixed_a = fixed[std::size_t(e.a)], fixed_b = fixed[std::size_t(e.b)];
@@ -84,6 +100,16 @@ void plan_removals(double limit, const std::vector<Vec2>& x, const std::vector<E
 
 }  // namespace
 
+double local_spacing(const ParticleEditSettings& settings, Index b, double h0, const Vec2& x) {
+  double h = h0;
+  for (const GradedWall& w : settings.graded) {
+    if (w.body != kNoIndex && w.body != b) continue;
+    const double d = std::max(0.0, (x - w.point).dot(w.normal));
+    h = std::min(h, w.spacing + (h0 - w.spacing) * std::min(1.0, d / h0));
+  }
+  return h;
+}
+
 std::vector<char> fixed_particles(const PfemTopology& topo, const BoundaryConditions<2>& bc) {
   std::vector<char> fixed(std::size_t(topo.n_points), 0);
   auto mark = [&](Index i) {
@@ -107,15 +133,19 @@ void plan_particle_edits(const ParticleEditSettings& settings, const PfemTopolog
     for (Index i : in.row) in_row[std::size_t(i)] = 1;
   for (std::size_t b = 0; b < change.triangles.size(); ++b) {
     std::vector<Index>& t = change.triangles[b];
-    const double h0 = topo.spacing[b];
+    const EdgeLimits limits{settings, Index(b), topo.spacing[b], x};
     std::vector<char> dead(t.size() / 3, 0);
     const Index removed_before = change.n_removed();
-    if (settings.remove_below > 0.0) plan_removals(settings.remove_below * h0, x, topo.boundary[b], fixed, t, dead, change.remove, change.merge_into);
+    if (settings.remove_below > 0.0) plan_removals(limits, x, topo.boundary[b], fixed, t, dead, change.remove, change.merge_into);
     // Insertion: the midpoints of the long edges that remain. Positions of new points extend x for the splits.
     std::map<EdgeKey, Index> mid;
     if (settings.insert_above > 0.0) {
       const std::vector<MeshEdge> edges = edges_of(t, x, dead);
-      for (auto e = edges.rbegin(); e != edges.rend() && e->length > settings.insert_above * h0; ++e) {
+      for (auto e = edges.rbegin(); e != edges.rend(); ++e) {
+        if (!(e->length > settings.insert_above * limits.spacing(*e))) {
+          if (limits.uniform()) break;  // longest first, as above
+          continue;
+        }
         if (in_row[std::size_t(e->a)] || in_row[std::size_t(e->b)]) continue;
         mid[key_of(e->a, e->b)] = n_old + Index(change.add.size());
         change.add.push_back({Index(b), e->a, e->b, Vec2::Zero(), Vec2::Zero()});

@@ -200,6 +200,7 @@ struct WallSpec {
   Index body = kNoIndex;
   double penalty = 0.0;  // k_N, force per unit length per unit penetration; 0: chosen from the material and mesh
   bool stick = false;
+  double spacing = 0.0;  // remesh spacing at the wall (particle insertion and removal); 0: the body's
   SourceRef where;
 };
 

@@ -25,6 +25,14 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "on the wall of where it was at the start of the step it first touched) by a tangential penalty k_N; it is let go "
                   "when it leaves the wall.")
                   .one_of({"free", "stick"}).by_default("free"));
+  s.push_back(key("wall[].spacing", K::real,
+                  "Remesh spacing at the wall (methods pfem and es_pfem, with remesh.insert_above): particles are inserted and "
+                  "removed against this spacing at the wall, growing linearly to the body's spacing one body spacing away, so "
+                  "that the layer of cells along the wall is thinner. 0 (default): the body's spacing everywhere. Why: a stick "
+                  "wall holds the particles on it, so the thrust of the paste below the next row of particles reaches the wall "
+                  "without the paste yielding; a yield-stress deposit on a stick ground then holds a slope steeper by about that "
+                  "row's height over the depth (docs/free_surface.md).")
+                  .by_default("0").at_least(0));
   // [[inlet]]
   s.push_back(key("inlet", K::table_array,
                   "Inflow (methods pfem, es_pfem; [Reinold 2021] §4.4): material enters a body through a section, the segment from `from` "

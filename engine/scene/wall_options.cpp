@@ -33,6 +33,9 @@ void read_wall(SceneSpec& s, const TableReader& t) {
   }
   w.penalty = t.real("penalty");
   w.stick = t.string("slip") == "stick";
+  w.spacing = t.real("spacing");
+  if (w.spacing > 0.0 && s.scene.method != Method::pfem && s.scene.method != Method::es_pfem)
+    t.error("spacing", "the remesh spacing at a wall is used by methods pfem and es_pfem (they insert and remove particles)");
   s.walls.push_back(w);
 }
 

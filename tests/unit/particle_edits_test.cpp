@@ -6,6 +6,7 @@
 //  - removal of an interior particle that came too close to a neighbour leaves the area exactly as it was and the
 //    remaining particles' fields untouched; a surface particle goes only into its neighbour along the surface;
 //  - particles with a prescribed displacement are never removed;
+//  - near a wall with a spacing of its own the spacing is graded, and the edits refine there only;
 //  - the renumbered model is consistent: cells on particles only, every cell counter-clockwise, dofs rebuilt.
 #include <gtest/gtest.h>
 
@@ -107,6 +108,47 @@ TEST_P(ParticleInsertion, CarriesLinearFieldsExactlyAndKeepsTheArea) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, ParticleInsertion,
                          ::testing::Values(std::make_pair("es_pfem", "es_up"), std::make_pair("pfem", "p1")));
+
+// Near a wall with a spacing of its own, h0 is graded: h_w on the wall, growing linearly to h0 one h0 away. The
+// undeformed block has no edge too long for h0; with the ground graded to 0.4 h0, repeated remeshes split edges
+// near it, only there (every new particle within h0 of it), until every edge is within insert_above times the
+// spacing at its midpoint, and none is below remove_below times it; the body's area stays what it was.
+TEST(ParticleInsertion, GradedNearAWallRefinesOnlyNearItUntilEveryEdgeFitsTheLocalSpacing) {
+  FemModel m(testing::scene_from_text(block_scene("es_pfem", "es_up", "")));
+  PfemTopology topo = initial_topology(m);
+  const double h0 = topo.spacing[0];
+  PfemSettings s = settings_of(m, 1.7, 0.3);
+  s.edits.graded = {{Vec2(0.0, 0.0), Vec2(0.0, 1.0), 0.4 * h0, kNoIndex}};
+  EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 0.0)), 0.4 * h0);
+  EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, -0.01)), 0.4 * h0);  // behind the wall: its own spacing
+  EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 0.5 * h0)), 0.7 * h0);
+  EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 2.0 * h0)), h0);
+  EXPECT_DOUBLE_EQ(local_spacing({1.7, 0.3, {{Vec2(0.0, 0.0), Vec2(0.0, 1.0), 0.4 * h0, 1}}}, 0, h0, Vec2(0.1, 0.0)), h0);  // another body's
+  Timers timers;
+  ASSERT_EQ(remesh_model(settings_of(m, 1.7, 0.3), 0.0, topo, m, timers).inserted, 0);  // ungraded: nothing to do
+  const double area_before = area(m);
+  const Index n_before = topo.n_points;
+  int passes = 0;
+  for (Index changed = 1; changed > 0 && passes < 10; ++passes) {
+    const RemeshReport r = remesh_model(s, 0.0, topo, m, timers);
+    changed = r.inserted + r.removed;
+  }
+  ASSERT_LT(passes, 10);
+  ASSERT_GT(topo.n_points, n_before);
+  for (Index i = n_before; i < topo.n_points; ++i) EXPECT_LT(m.nodes.position_n(i).y(), h0);
+  std::set<std::pair<Index, Index>> seen;
+  for (std::size_t t = 0; t < topo.triangles[0].size(); t += 3)
+    for (int e = 0; e < 3; ++e) {
+      const Index a = topo.triangles[0][t + std::size_t(e)], b = topo.triangles[0][t + std::size_t((e + 1) % 3)];
+      if (!seen.insert({std::min(a, b), std::max(a, b)}).second) continue;
+      const Vec2 xa = m.nodes.position_n(a), xb = m.nodes.position_n(b);
+      const double h = local_spacing(s.edits, 0, h0, 0.5 * (xa + xb));
+      EXPECT_LE((xa - xb).norm(), 1.7 * h);
+      EXPECT_GE((xa - xb).norm(), 0.3 * h);
+    }
+  EXPECT_NEAR(area(m), area_before, 1e-14);
+  expect_consistent(m, topo);
+}
 
 // An interior particle moved to within 0.15 h0 of its neighbour: it (or the neighbour) goes, the other particles
 // keep their values, the union of the triangles (the body) is unchanged.
