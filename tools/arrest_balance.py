@@ -9,14 +9,25 @@ from, and by how much:
 
   base      F_b / (tau0 x_f)                    1 when the whole base is at yield
   thrust    F_s / (rho g h_c^2 / 2)             1 for a lithostatic centre with no deviatoric normal stress
-  split     rho g h_c^2/2 - F_s = integral (rho g (h - y) + sigma_yy) dy   (the centre lighter than lithostatic)
-                                + integral (sigma_xx - sigma_yy) dy          (the plug in extension, <= 2 tau0 h_c)
+  budget    rho g h_c^2/2 - F_s, split exactly into five parts:
+              height      rho g (h_c^2 - h_0^2) / 2          the section's top h_0 below the highest node h_c
+              density     g int (rho - rho/J)(h_0 - y) dy     the paste dilated (J > 1) weighs less per height
+              vertical    int (W(y) + sigma_yy) dy            sigma_yy above or below the weight W(y) = g int_y rho/J
+              extension   int (sigma_xx - sigma_yy) dy        the plug in extension (<= 2 tau0 h_0 at yield)
+              wall        int -sigma_xx dy - F_s              the cell stresses a quarter cell off the wall against
+                                                              the wall's force (resolution next to the wall)
 
 The stresses along the centre section and the base come from the frame's cell stresses, sampled on lines a quarter
 of a cell inside the body. It also prints the arrested half-width of the balance with the plug at yield in
 extension over the whole depth (docs/free_surface.md): rho g h^2 / 2 - 2 tau0 h = tau0 (L - x).
 
-usage: tools/arrest_balance.py RUN_DIR --tau0 20 [--rho 2300] [--g 9.81] [--area 0.005] [--csv FILE]
+With --profile FILE it writes the same split section by section along the deposit (x, top, thrust of the cell
+stresses, lithostatic thrusts for rho and rho / J, the weight and sigma_yy at the base, the extension term, and the
+friction of the ground from x to the front as the cell shear a quarter cell up integrates it), which shows where
+the deposit departs from the shallow balance d(thrust)/dx = tau_b.
+
+usage: tools/arrest_balance.py RUN_DIR --tau0 20 [--rho 2300] [--g 9.81] [--area 0.005] [--step N] [--csv FILE]
+       [--profile FILE]
 (RUN_DIR holds probes.csv with wall_force probes symmetry_x and ground_x, and the frames *.vtu; without frames, as a
 study's runs, only the walls' balance is given, with the probes front and height.)
 """
@@ -31,8 +42,11 @@ import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
 
-def last_frame(run_dir):
+def read_frame(run_dir, step=None):
+    """The frame of `step` (default: the last)."""
     frames = sorted(glob.glob(os.path.join(run_dir, "*.vtu")))
+    if step is not None:
+        frames = [f for f in frames if f.endswith(f"_{step:06d}.vtu")]
     if not frames:
         return None, None
     reader = vtk.vtkXMLUnstructuredGridReader()
@@ -41,10 +55,15 @@ def last_frame(run_dir):
     return frames[-1], reader.GetOutput()
 
 
-def last_probes(run_dir):
+def probes_at(run_dir, frame):
+    """The probes of the frame's step (its file name ends in the step), or the last row without a frame."""
     with open(os.path.join(run_dir, "probes.csv")) as f:
         rows = list(csv.DictReader(f))
-    return {k: float(v) for k, v in rows[-1].items()}
+    row = rows[-1]
+    if frame:
+        step = int(os.path.splitext(frame)[0].rsplit("_", 1)[-1])
+        row = next((r for r in rows if int(r["step"]) == step), row)
+    return {k: float(v) for k, v in row.items()}
 
 
 def sample_line(mesh, a, b, n):
@@ -61,7 +80,85 @@ def sample_line(mesh, a, b, n):
     pts = vtk_to_numpy(out.GetPoints().GetData())[:, :2]
     valid = vtk_to_numpy(out.GetPointData().GetArray(probe.GetValidPointMaskArrayName())).astype(bool)
     stress = vtk_to_numpy(out.GetPointData().GetArray("stress")).reshape(-1, 3, 3)
-    return pts[valid], stress[valid]
+    jac = vtk_to_numpy(out.GetPointData().GetArray("J"))
+    return pts[valid], stress[valid], jac[valid]
+
+
+def section(mesh, x, hc, rho, g, n=400):
+    """The vertical section at x: its top, thrust, lithostatic thrusts and the budget's parts (N/m)."""
+    pts, s, jac = sample_line(mesh, (x, 1e-9), (x, hc), n)
+    if len(pts) < 2:
+        return None
+    y, top = pts[:, 1], pts[:, 1].max()
+    rho_cur = rho / jac
+    # W(y) = g int_y^top rho/J dy', the weight above y per unit width (cumulative trapezoid from the top down)
+    seg = 0.5 * (rho_cur[1:] + rho_cur[:-1]) * np.diff(y)
+    W = g * np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])
+    return {
+        "x": x, "top": top, "y": y, "s": s,
+        "thrust": np.trapz(-s[:, 0, 0], y),
+        "litho_nominal": rho * g * top**2 / 2,
+        "litho_current": np.trapz(W, y),
+        "vertical": np.trapz(W + s[:, 1, 1], y),
+        "extension": np.trapz(s[:, 0, 0] - s[:, 1, 1], y),
+        "weight": W[0], "base_syy": -s[0, 1, 1],
+        "upper_extension": np.mean(((s[:, 0, 0] - s[:, 1, 1]))[y > top / 2]),
+    }
+
+
+def boundary_areas(mesh):
+    """Each node's share of the boundary's outward normal times length (as the walls' penalty measures it)."""
+    x = vtk_to_numpy(mesh.GetPoints().GetData())[:, :2]
+    tri = vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 3)
+    edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    _, inverse, count = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
+    directed = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])[count[inverse.ravel()] == 1]
+    area = np.zeros_like(x)
+    for a, b in directed:  # counter-clockwise cells: the outward normal is the edge turned clockwise
+        d = x[b] - x[a]
+        area[a] += 0.5 * np.array([d[1], -d[0]])
+        area[b] += 0.5 * np.array([d[1], -d[0]])
+    return x, area
+
+
+def corner_hold(mesh, Fs):
+    """The stick ground's horizontal hold on the corner node (symmetry line and ground), N/m.
+
+    The corner node touches both walls; its penalty springs, k_N times its boundary length on each wall, share the
+    push of the paste towards the symmetry line. The ground's share is a thrust the symmetry wall's force does not
+    count and the ground's total friction nets out: F_s + c is the thrust across the centre section, F_b + c the
+    friction of the rest of the base. k_N follows from F_s and the wall nodes' penetrations; the ground's spring is
+    taken as anchored on the symmetry line (where the corner node touched down at the start)."""
+    x, area = boundary_areas(mesh)
+    on_wall = np.where(x[:, 0] <= 0.0)[0]
+    if len(on_wall) == 0:
+        return 0.0, None
+    w = np.maximum(0.0, -area[on_wall, 0]) * -x[on_wall, 0]
+    if w.sum() <= 0.0:
+        return 0.0, None
+    k = Fs / w.sum()  # k_N, N/m^3
+    c = on_wall[np.argmin(x[on_wall, 1])]
+    if x[c, 1] > 0.0:
+        return 0.0, None
+    return k * max(0.0, -area[c, 1]) * -x[c, 0], {"share": k * w[np.argmin(x[on_wall, 1])], "next": np.sort(x[on_wall, 1])[1], "k": k}
+
+
+def write_profile(path, mesh, xf, hc, cell, xb, tau_b, rho, g, n=60):
+    """The budget at n sections from the centre to a cell short of the front, with the friction beyond each."""
+    # friction of the ground on the paste from x to the front: - int_x^xf tau_b (tau_b the cell shear near the base)
+    seg = 0.5 * (tau_b[1:] + tau_b[:-1]) * np.diff(xb)
+    beyond = np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["x", "top", "thrust", "litho_nominal", "litho_current", "vertical", "extension", "weight_base",
+                    "syy_base", "friction_beyond"])
+        for x in np.linspace(0.25 * cell, xf - cell, n):
+            c = section(mesh, x, hc, rho, g)
+            if c is None:
+                continue
+            w.writerow([f"{v:.6g}" for v in (x, c["top"], c["thrust"], c["litho_nominal"], c["litho_current"],
+                                              c["vertical"], c["extension"], c["weight"], c["base_syy"],
+                                              -np.interp(x, xb, beyond))])
 
 
 def extension_corrected_half_width(tau0, rho, g, area):
@@ -88,10 +185,12 @@ def main():
     ap.add_argument("--g", type=float, default=9.81)
     ap.add_argument("--area", type=float, default=None, help="half-area for the shallow and corrected half-widths")
     ap.add_argument("--csv", default=None, help="write the centre section (y, stresses) here")
+    ap.add_argument("--step", type=int, default=None, help="the frame of this step (default: the last)")
+    ap.add_argument("--profile", default=None, help="write the budget section by section along x here")
     a = ap.parse_args()
     tau0, rho, g = a.tau0, a.rho, a.g
-    frame, mesh = last_frame(a.run_dir)
-    p = last_probes(a.run_dir)
+    frame, mesh = read_frame(a.run_dir, a.step)
+    p = probes_at(a.run_dir, frame)
     if mesh is None:  # no frame (a study's run): the walls' balance from the probes front and height
         hc, xf = p["height"], p["front"]
         Fs, Fb = p["symmetry_x"], -p["ground_x"]
@@ -109,36 +208,63 @@ def main():
     cell = math.sqrt(2.0 * xf * hc / max(1, mesh.GetNumberOfCells()))  # a cell's size, from the deposit's area
 
     # Centre section, a quarter of a cell off the symmetry line; the column's top is where the samples end.
-    xs = 0.25 * cell
-    pts, s = sample_line(mesh, (xs, 1e-9), (xs, hc), 400)
-    y, top = pts[:, 1], pts[:, 1].max()
-    litho = rho * g * (top - y)
-    thrust_section = np.trapz(-s[:, 0, 0], y)
-    lighter = np.trapz(litho + s[:, 1, 1], y)
-    extension = np.trapz(s[:, 0, 0] - s[:, 1, 1], y)
+    c = section(mesh, 0.25 * cell, hc, rho, g)
+    y, s, top = c["y"], c["s"], c["top"]
     # Base, a quarter of a cell above the ground.
-    bpts, bs = sample_line(mesh, (0.0, 0.25 * cell), (xf, 0.25 * cell), 800)
+    bpts, bs, _ = sample_line(mesh, (0.0, 0.25 * cell), (xf, 0.25 * cell), 800)
     base_shear = bs[:, 0, 1]
 
     Fs, Fb = p.get("symmetry_x", float("nan")), -p.get("ground_x", float("nan"))
     litho_thrust = rho * g * hc**2 / 2
+    parts = {
+        "height": litho_thrust - c["litho_nominal"],
+        "density": c["litho_nominal"] - c["litho_current"],
+        "vertical": c["vertical"],
+        "extension": c["extension"],
+        "wall": c["thrust"] - Fs,
+    }
     print(f"{frame}: t = {p['time']:g} s, x_f = {xf:.4f} m, h_c = {1e3 * hc:.2f} mm, speed {p.get('speed', float('nan')):.2e} m/s")
     print(f"walls: symmetry thrust F_s = {Fs:.4f} N/m, ground friction F_b = {Fb:.4f} N/m (balance {Fs - Fb:+.1e}), "
           f"ground normal {p.get('ground_y', float('nan')):.3f} N/m")
     print(f"base:   F_b / (tau0 x_f)          = {Fb / (tau0 * xf):.3f}   (cell shear a quarter cell up: mean "
           f"{base_shear.mean() / tau0:.3f} tau0 over {bpts[0, 0]:.3f}-{bpts[-1, 0]:.3f} m)")
-    print(f"thrust: F_s / (rho g h_c^2 / 2)   = {Fs / litho_thrust:.3f}   (section of cell stresses: {thrust_section:.4f} N/m)")
-    print(f"  lithostatic {litho_thrust:.4f} - thrust {Fs:.4f} = {litho_thrust - Fs:.4f} N/m. The section's cell stresses (top "
-          f"{1e3 * top:.2f} mm at x = {1e3 * xs:.2f} mm; they need not balance the nodal forces exactly): lighter than "
-          f"lithostatic by {lighter:.4f}, the plug's extension {extension:.4f} (2 tau0 h = {2 * tau0 * top:.4f}), mean "
-          f"(sigma_xx - sigma_yy) / (2 tau0) over the upper half {np.mean(((s[:, 0, 0] - s[:, 1, 1]) / (2 * tau0))[y > top / 2]):.3f}")
+    print(f"thrust: F_s / (rho g h_c^2 / 2)   = {Fs / litho_thrust:.3f}   (section of cell stresses: {c['thrust']:.4f} N/m)")
+    print(f"  budget: rho g h_c^2 / 2 - F_s = {litho_thrust:.4f} - {Fs:.4f} = {litho_thrust - Fs:.4f} N/m "
+          f"({100 * (1 - Fs / litho_thrust):.1f} % of it), from the section at x = {1e3 * c['x']:.2f} mm (top "
+          f"h_0 = {1e3 * top:.2f} mm):")
+    for name, v in parts.items():
+        print(f"    {name:10s} {v:+.4f} N/m  ({100 * v / litho_thrust:+.1f} %)")
+    print(f"    (sum {sum(parts.values()):+.4f}; extension bound 2 tau0 h_0 = {2 * tau0 * top:.4f}; mean (sigma_xx - "
+          f"sigma_yy) / (2 tau0) over the upper half {c['upper_extension'] / (2 * tau0):.3f}; base sigma_yy "
+          f"{c['base_syy']:.2f} Pa against the weight above it {c['weight']:.2f} Pa)")
     print(f"  effective yield stress of the shallow balance rho g h_c^2 / (2 x_f) = {litho_thrust / xf / tau0:.3f} tau0")
+    hold, corner = corner_hold(mesh, Fs)
+    if corner:
+        y1 = corner["next"]
+        strip = rho * g * hc * y1 / 2
+        print(f"corner: the stick ground holds the corner node with c = {hold:.4f} N/m (the symmetry wall with "
+              f"{corner['share']:.4f}); the centre section's thrust F_s + c = {Fs + hold:.4f} N/m "
+              f"({(Fs + hold) / litho_thrust:.3f} of rho g h_c^2 / 2), the friction of the rest of the base F_b + c = "
+              f"{Fb + hold:.4f} N/m = {(Fb + hold) / (tau0 * xf):.3f} tau0 x_f; k_N = {corner['k']:.9g} N/m^3 from F_s and the "
+              f"wall's penetrations")
+        print(f"  held strip: the bottom node row is held, so the thrust of the strip below the first node above the "
+              f"corner (y_1 = {1e3 * y1:.2f} mm) reaches the ground without yielding: about rho g h_c y_1 / 2 = "
+              f"{strip:.4f} N/m; (F_b + c - strip) / (tau0 x_f) = {(Fb + hold - strip) / (tau0 * xf):.3f}")
+        # The whole of rho g h_c^2 / 2 in units of tau0 x_f: the budget's parts with the wall term split into the
+        # corner's hold and what the cell stresses still miss, and the thrust F_s + c into the base's two parts.
+        terms = [("height", parts["height"]), ("density", parts["density"]), ("vertical", parts["vertical"]),
+                 ("extension", parts["extension"]), ("section", c["thrust"] - Fs - hold),
+                 ("base layer", Fb + hold - strip), ("held strip", strip)]
+        print(f"  rho g h_c^2 / (2 tau0 x_f) = {litho_thrust / (tau0 * xf):.3f} = "
+              + " + ".join(f"{name} {v / (tau0 * xf):.3f}" for name, v in terms))
     if a.area:
         k = rho * g
         L0 = (3 * a.area / (2 * math.sqrt(2 * tau0 / k))) ** (2.0 / 3.0)
         L1, h1 = extension_corrected_half_width(tau0, rho, g, a.area)
         print(f"half-width: shallow {L0:.4f} m (h_c {1e3 * math.sqrt(2 * tau0 * L0 / k):.2f} mm), with the plug at yield in "
               f"extension {L1:.4f} m (h_c {1e3 * h1:.2f} mm); computed {xf:.4f} m ({100 * (xf / L0 - 1):+.1f} %, {100 * (xf / L1 - 1):+.1f} %)")
+    if a.profile:
+        write_profile(a.profile, mesh, xf, hc, cell, bpts[:, 0], base_shear, rho, g)
     if a.csv:
         with open(a.csv, "w", newline="") as f:
             w = csv.writer(f)

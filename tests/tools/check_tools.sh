@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Smoke test of tools/study and tools/render (ctest label scene): a two-case study into a temporary
 # directory, then checks that the CSV has its columns and rows, that every plot and the picture are PNG
-# files, and that tools/profile_folded reads a --profile run. Usage: check_tools.sh LOOM
+# files, that tools/profile_folded reads a --profile run and that tools/arrest_balance.py reads walls as loom
+# does. Usage: check_tools.sh LOOM
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 loom=$1
@@ -21,4 +22,14 @@ done
 tools/profile_folded "$out/profiled/timings.json" > "$out/folded" || { echo "profile_folded failed"; exit 1; }
 grep -q '^step 1;newton;iteration 1;solve;factorize [0-9]*$' "$out/folded" \
   || { echo "profile_folded: no 'step 1;newton;iteration 1;solve;factorize' stack; its output:"; head -20 "$out/folded"; exit 1; }
+# tools/arrest_balance.py rebuilds the symmetry wall's force from a frame's penetrations: the penalty it infers must
+# be the scene's default k_N = 100 E / h (E = 1e5 Pa, h = 5 mm), or its corner correction would be wrong. loom
+# measures the boundary lengths at the start of a step, the tool in the frame: they agree on a body at rest (here
+# the column with a yield stress it cannot exceed, settled by Bossak's damping: 6e-5 apart after 6 s).
+"$loom" run scenes/bingham_collapse_es.toml --out "$out/collapse" --quiet --set 'material[0].tau0=1e4' --set time.dt=0.05 \
+  --set time.steps=120 --set output.every=120
+tools/arrest_balance.py "$out/collapse" --tau0 1e4 --area 0.005 > "$out/balance" || { echo "arrest_balance failed"; exit 1; }
+k=$(sed -n 's/.*k_N = \([0-9.e+]*\) N\/m^3.*/\1/p' "$out/balance")
+python3 -c "import sys; sys.exit(0 if abs(float('$k') / 2e9 - 1) < 1e-3 else 1)" \
+  || { echo "arrest_balance: k_N = $k, expected 2e9"; cat "$out/balance"; exit 1; }
 echo "tools ok"
