@@ -9,9 +9,10 @@ from, and by how much:
 
   base      F_b / (tau0 x_f)                    1 when the whole base is at yield
   thrust    F_s / (rho g h_c^2 / 2)             1 for a lithostatic centre with no deviatoric normal stress
-  budget    rho g h_c^2/2 - F_s, split exactly into five parts:
+  budget    rho g h_c^2/2 - F_s, split exactly into five parts (and at rest, where F_s = F_b, rho g h_c^2 / 2 into
+            seven with F_s + c split into the base's two below):
               height      rho g (h_c^2 - h_0^2) / 2          the section's top h_0 below the highest node h_c
-              density     g int (rho - rho/J)(h_0 - y) dy     the paste dilated (J > 1) weighs less per height
+              density     g int (rho - rho/J) y dy            the paste dilated (J > 1) weighs less per height
               vertical    int (W(y) + sigma_yy) dy            sigma_yy above or below the weight W(y) = g int_y rho/J
               extension   int (sigma_xx - sigma_yy) dy        the plug in extension (<= 2 tau0 h_0 at yield)
               wall        int -sigma_xx dy - F_s              the cell stresses a quarter cell off the wall against
@@ -47,6 +48,8 @@ def read_frame(run_dir, step=None):
     frames = sorted(glob.glob(os.path.join(run_dir, "*.vtu")))
     if step is not None:
         frames = [f for f in frames if f.endswith(f"_{step:06d}.vtu")]
+        if not frames:
+            raise SystemExit(f"{run_dir}: no frame of step {step}")
     if not frames:
         return None, None
     reader = vtk.vtkXMLUnstructuredGridReader()
@@ -62,7 +65,9 @@ def probes_at(run_dir, frame):
     row = rows[-1]
     if frame:
         step = int(os.path.splitext(frame)[0].rsplit("_", 1)[-1])
-        row = next((r for r in rows if int(r["step"]) == step), row)
+        row = next((r for r in rows if int(r["step"]) == step), None)
+        if row is None:
+            raise SystemExit(f"{run_dir}/probes.csv: no row of step {step}, the frame {frame}'s")
     return {k: float(v) for k, v in row.items()}
 
 
@@ -109,6 +114,8 @@ def section(mesh, x, hc, rho, g, n=400):
 def boundary_areas(mesh):
     """Each node's share of the boundary's outward normal times length (as the walls' penalty measures it)."""
     x = vtk_to_numpy(mesh.GetPoints().GetData())[:, :2]
+    if np.any(np.diff(vtk_to_numpy(mesh.GetCells().GetOffsetsArray())) != 3):
+        raise SystemExit("arrest_balance: the frame's cells are not all 3-node triangles (es_pfem, pfem with p1)")
     tri = vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 3)
     edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
     _, inverse, count = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
@@ -128,7 +135,9 @@ def corner_hold(mesh, Fs):
     push of the paste towards the symmetry line. The ground's share is a thrust the symmetry wall's force does not
     count and the ground's total friction nets out: F_s + c is the thrust across the centre section, F_b + c the
     friction of the rest of the base. k_N follows from F_s and the wall nodes' penetrations; the ground's spring is
-    taken as anchored on the symmetry line (where the corner node touched down at the start)."""
+    taken as anchored on the symmetry line (where the corner node touched down at the start: the frame's displacement
+    must put its reference position there, else it is reported), and both walls as having the same k_N (the default
+    100 E / h; not so if either sets `penalty`)."""
     x, area = boundary_areas(mesh)
     on_wall = np.where(x[:, 0] <= 0.0)[0]
     if len(on_wall) == 0:
@@ -138,8 +147,12 @@ def corner_hold(mesh, Fs):
         return 0.0, None
     k = Fs / w.sum()  # k_N, N/m^3
     c = on_wall[np.argmin(x[on_wall, 1])]
-    if x[c, 1] > 0.0:
+    if x[c, 1] > 0.0 or len(on_wall) < 2:
         return 0.0, None
+    u = mesh.GetPointData().GetArray("displacement")
+    if u is not None and np.linalg.norm(x[c] - vtk_to_numpy(u)[c, :2]) > 1e-9:
+        print(f"corner: the corner particle did not start at the origin (reference {x[c] - vtk_to_numpy(u)[c, :2]}); "
+              "its ground anchor, taken on the symmetry line, may be off")
     return k * max(0.0, -area[c, 1]) * -x[c, 0], {"share": k * w[np.argmin(x[on_wall, 1])], "next": np.sort(x[on_wall, 1])[1], "k": k}
 
 

@@ -36,9 +36,11 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
   if (s.pfem.insert_above > 0.0 && s.pfem.remove_below > 0.0 && !(s.pfem.insert_above > 2.0 * s.pfem.remove_below))
     remesh.error("insert_above", "must exceed twice remesh.remove_below (" + std::to_string(s.pfem.remove_below) +
                                      "): the halves of a split edge would be removed again");
-  for (const WallSpec& w : s.walls)
-    if (w.spacing > 0.0 && !(s.pfem.insert_above > 0.0))
-      remesh.error("insert_above", "wall \"" + w.name + "\" sets a spacing, which only particle insertion (insert_above > 0) can make");
+  // Named at the wall's key: remesh.insert_above may well be absent from the file.
+  const auto walls = root.array("wall");
+  for (std::size_t i = 0; i < s.walls.size() && i < walls.size(); ++i)
+    if (s.walls[i].spacing > 0.0 && !(s.pfem.insert_above > 0.0))
+      walls[i].error("spacing", "a spacing at the wall is made by particle insertion, which is off (set remesh.insert_above > 0)");
   s.pfem.btm = map.string("scheme") == "btm";
   s.pfem.iso = int(map.integer("iso"));
   if (!s.pfem.btm && map.has("iso") && s.pfem.iso != 0) map.error("iso", "iso is used by scheme = \"btm\" only (CPM copies F as it is)");

@@ -122,10 +122,16 @@ TEST(ParticleInsertion, GradedNearAWallRefinesOnlyNearItUntilEveryEdgeFitsTheLoc
   EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 0.0)), 0.4 * h0);
   EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, -0.01)), 0.4 * h0);  // behind the wall: its own spacing
   EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 0.5 * h0)), 0.7 * h0);
-  EXPECT_DOUBLE_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 2.0 * h0)), h0);
-  EXPECT_DOUBLE_EQ(local_spacing({1.7, 0.3, {{Vec2(0.0, 0.0), Vec2(0.0, 1.0), 0.4 * h0, 1}}}, 0, h0, Vec2(0.1, 0.0)), h0);  // another body's
+  EXPECT_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, h0)), h0);  // beyond the ramp: exactly h0
+  EXPECT_EQ(local_spacing(s.edits, 0, h0, Vec2(0.1, 2.0 * h0)), h0);
   Timers timers;
   ASSERT_EQ(remesh_model(settings_of(m, 1.7, 0.3), 0.0, topo, m, timers).inserted, 0);  // ungraded: nothing to do
+  // A wall graded for another body changes nothing for this one.
+  PfemSettings other = settings_of(m, 1.7, 0.3);
+  other.edits.graded = {{Vec2(0.0, 0.0), Vec2(0.0, 1.0), 0.4 * h0, 1}};
+  EXPECT_EQ(local_spacing(other.edits, 0, h0, Vec2(0.1, 0.0)), h0);
+  const RemeshReport r_other = remesh_model(other, 0.0, topo, m, timers);
+  ASSERT_EQ(r_other.inserted + r_other.removed, 0);
   const double area_before = area(m);
   const Index n_before = topo.n_points;
   int passes = 0;
