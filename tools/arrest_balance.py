@@ -117,9 +117,9 @@ def boundary_areas(mesh):
     if np.any(np.diff(vtk_to_numpy(mesh.GetCells().GetOffsetsArray())) != 3):
         raise SystemExit("arrest_balance: the frame's cells are not all 3-node triangles (es_pfem, pfem with p1)")
     tri = vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 3)
-    edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
-    _, inverse, count = np.unique(edges, axis=0, return_inverse=True, return_counts=True)
-    directed = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])[count[inverse.ravel()] == 1]
+    directed = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    _, inverse, count = np.unique(np.sort(directed, axis=1), axis=0, return_inverse=True, return_counts=True)
+    directed = directed[count[inverse.ravel()] == 1]  # an edge of one triangle only: on the boundary
     area = np.zeros_like(x)
     for a, b in directed:  # counter-clockwise cells: the outward normal is the edge turned clockwise
         d = x[b] - x[a]
@@ -146,14 +146,15 @@ def corner_hold(mesh, Fs):
     if w.sum() <= 0.0:
         return 0.0, None
     k = Fs / w.sum()  # k_N, N/m^3
-    c = on_wall[np.argmin(x[on_wall, 1])]
+    lowest = np.argmin(x[on_wall, 1])
+    c = on_wall[lowest]
     if x[c, 1] > 0.0 or len(on_wall) < 2:
         return 0.0, None
     u = mesh.GetPointData().GetArray("displacement")
-    if u is not None and np.linalg.norm(x[c] - vtk_to_numpy(u)[c, :2]) > 1e-9:
-        print(f"corner: the corner particle did not start at the origin (reference {x[c] - vtk_to_numpy(u)[c, :2]}); "
-              "its ground anchor, taken on the symmetry line, may be off")
-    return k * max(0.0, -area[c, 1]) * -x[c, 0], {"share": k * w[np.argmin(x[on_wall, 1])], "next": np.sort(x[on_wall, 1])[1], "k": k}
+    if u is not None and np.linalg.norm(reference := x[c] - vtk_to_numpy(u)[c, :2]) > 1e-9:
+        print(f"corner: the corner particle did not start at the origin (reference {reference}); its ground anchor, "
+              "taken on the symmetry line, may be off")
+    return k * max(0.0, -area[c, 1]) * -x[c, 0], {"share": k * w[lowest], "next": np.sort(x[on_wall, 1])[1], "k": k}
 
 
 def write_profile(path, mesh, xf, hc, cell, xb, tau_b, rho, g, n=60):

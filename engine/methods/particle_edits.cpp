@@ -47,8 +47,9 @@ struct EdgeLimits {
 };
 
 // Removal on one body's triangles `t` (edited in place; dead triangles flagged).
-void plan_removals(const EdgeLimits& limits, const std::vector<Vec2>& x, const std::vector<Edge>& boundary, const std::vector<char>& fixed,
-                   std::vector<Index>& t, std::vector<char>& dead, std::vector<char>& remove, std::vector<Index>& merge_into) {
+void plan_removals(const EdgeLimits& limits, const std::vector<Edge>& boundary, const std::vector<char>& fixed, std::vector<Index>& t,
+                   std::vector<char>& dead, std::vector<char>& remove, std::vector<Index>& merge_into) {
+  const std::vector<Vec2>& x = limits.x;
   std::vector<char> on_surface(x.size(), 0), touched(x.size(), 0);
   std::set<EdgeKey> surface_edge;
   for (const Edge& e : boundary) on_surface[std::size_t(e[0])] = on_surface[std::size_t(e[1])] = 1, surface_edge.insert(key_of(e[0], e[1]));
@@ -137,7 +138,7 @@ void plan_particle_edits(const ParticleEditSettings& settings, const PfemTopolog
     const EdgeLimits limits{settings, Index(b), topo.spacing[b], x};
     std::vector<char> dead(t.size() / 3, 0);
     const Index removed_before = change.n_removed();
-    if (settings.remove_below > 0.0) plan_removals(limits, x, topo.boundary[b], fixed, t, dead, change.remove, change.merge_into);
+    if (settings.remove_below > 0.0) plan_removals(limits, topo.boundary[b], fixed, t, dead, change.remove, change.merge_into);
     // Insertion: the midpoints of the long edges that remain. Positions of new points extend x for the splits.
     std::map<EdgeKey, Index> mid;
     if (settings.insert_above > 0.0) {
