@@ -35,7 +35,7 @@ FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
   if constexpr (D == 2)
     if (pfem_) {
     const PfemSpec& p = scene_.pfem;
-    pfem_settings_.remesh = {p.alpha, p.lchar, p.local};
+    pfem_settings_.remesh.alpha = p.alpha, pfem_settings_.remesh.l_char = p.lchar, pfem_settings_.remesh.local = p.local;
     pfem_settings_.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
     pfem_settings_.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
     pfem_settings_.every = p.every;

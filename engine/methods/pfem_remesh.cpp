@@ -162,8 +162,13 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
     for (const Edge& e : topo.boundary[b]) constraints.push_back({to_local(e[0]), to_local(e[1])});
     std::vector<double> d_avg;
     if (settings.remesh.local) average_neighbour_distance(x, old_local, d_avg);  // eq 17 on the previous mesh
+    RemeshSettings remesh = settings.remesh;
+    if (!settings.edits.graded.empty()) {
+      const double h0 = topo.spacing[b];
+      remesh.spacing_at = [&settings, b, h0](const Vec2& p) { return local_spacing(settings.edits, Index(b), h0, p); };
+    }
     RemeshResult r;
-    remesh_points(x, constraints, old_local, settings.remesh, d_avg, r);
+    remesh_points(x, constraints, old_local, remesh, d_avg, r);
     // Nothing to solve on, and halving the step cannot bring the triangles back: stop at once.
     LOOM_CHECK(!r.triangles.empty() || pts.empty(), RunError,
                "remesh: the alpha shape (remesh.alpha = " << settings.remesh.alpha << ", l_char "

@@ -29,7 +29,9 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "Remesh spacing at the wall (methods pfem and es_pfem, with remesh.insert_above): particles are inserted and "
                   "removed against this spacing at the wall, growing linearly to the body's spacing one body spacing away, each "
                   "edge judged by the spacing at its midpoint (so an edge standing on the wall is split only when it is longer than "
-                  "about 1.7 / (1 - 0.85 (1 - s / h0)) times s). 0 (default): the body's spacing everywhere. Why: a stick "
+                  "about 1.7 / (1 - 0.85 (1 - s / h0)) times s); the alpha test takes a triangle as the body opening only if its "
+                  "circumradius also exceeds alpha times the graded spacing at its circumcentre (the body's beyond the ramp). "
+                  "0 (default): the body's spacing everywhere. Why: a stick "
                   "wall holds the particles on it, so the thrust of the paste below the next row of particles reaches the wall "
                   "without the paste yielding; a yield-stress deposit on a stick ground then holds a slope steeper by about that "
                   "row's height over the depth (docs/free_surface.md).")

@@ -33,6 +33,13 @@ double circumradius(const Vec2& a, const Vec2& b, const Vec2& c) {
   return twice_area > 0.0 ? ab * bc * ca / (2.0 * twice_area) : std::numeric_limits<double>::infinity();
 }
 
+// The centre of the circle through a, b, c (not collinear).
+Vec2 circumcentre(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 u = b - a, v = c - a;
+  const double d = 2.0 * (u.x() * v.y() - u.y() * v.x());
+  return a + Vec2(v.y() * u.squaredNorm() - u.y() * v.squaredNorm(), u.x() * v.squaredNorm() - v.x() * u.squaredNorm()) / d;
+}
+
 // Nesting levels by flood fill from the infinite face: crossing a constrained edge goes one level deeper, so the
 // faces inside a closed polygon (and not inside a hole of it) have odd levels.
 void mark_nesting_levels(Cdt& cdt) {
@@ -119,7 +126,10 @@ void remesh_points(const std::vector<Vec2>& positions, const std::vector<Edge>& 
     double l_char = settings.l_char;
     if (settings.local)
       l_char = (average_distance[std::size_t(t[0])] + average_distance[std::size_t(t[1])] + average_distance[std::size_t(t[2])]) / 3.0;
-    const bool passes = !(settings.alpha * l_char < circumradius(a, b, c));  // eq 16
+    const double radius = circumradius(a, b, c);
+    bool passes = !(settings.alpha * l_char < radius);  // eq 16
+    if (!passes && settings.spacing_at && std::isfinite(radius))
+      passes = !(settings.alpha * settings.spacing_at(circumcentre(a, b, c)) < radius);
     const bool inside = !classify || (previous ? previous->contains((a + b + c) / 3.0) : f->info() % 2 == 1);
     bool merged = !inside;
     if (constrained) {

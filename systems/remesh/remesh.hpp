@@ -20,6 +20,7 @@
 // which never crosses itself; it constrains the next remesh.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -42,6 +43,11 @@ struct RemeshSettings {
   double l_char = 0.0;        // constant characteristic length (used when local == false)
   bool local = false;         // l_char^loc from `average_distance` (eq 18)
   SurfaceMode surface = SurfaceMode::alpha;
+  // The spacing the particle edits keep at a point, where it varies (graded walls); empty: none. A triangle then
+  // fails the alpha test only if its circumradius also exceeds alpha times the spacing at its circumcentre: a
+  // triangle of fine corners beside a graded wall has an empty circle that reaches into the coarse cells above
+  // them, which says nothing of the body opening (the corners' l_char^loc is the fine spacing).
+  std::function<double(const Vec2&)> spacing_at;
 };
 
 struct RemeshResult {

@@ -209,5 +209,53 @@ TEST(FreeSurfaceRemesh, RepairsABoundaryThatCrossesItself) {
   }
 }
 
+// Graded spacing (RemeshSettings::spacing_at): two rows of points 0.25 apart on a wall (y = 0) under rows 2 apart,
+// the middle point of the upper fine row sunk by 0.04. With its neighbours it makes a sliver of circumradius 0.80
+// whose empty circle reaches up into the coarse cells (centre (2, 1.01)); its corners' l_char^loc is 0.49, so the
+// alpha test alone cut it out (a slit, and in a run the mass of the corner left without a triangle). Against the
+// spacing at its centre on a ramp from 0.25 at the wall to 2 it stays; without the field the old answer stands.
+TEST(FreeSurfaceRemesh, KeepsASliverOfFineCornersBesideCoarseCells) {
+  std::vector<Vec2> x;
+  for (int i = 0; i <= 16; ++i) x.emplace_back(0.25 * i, 0.0);
+  for (int i = 0; i <= 16; ++i) x.emplace_back(0.25 * i, i == 8 ? 0.21 : 0.25);
+  for (const double y : {2.25, 4.25})
+    for (int i = 0; i <= 2; ++i) x.emplace_back(2.0 * i, y);
+  RemeshResult delaunay;  // the previous mesh: every triangle of the hull
+  remesh_points(x, {}, RemeshSettings{1e9, 1.0, false}, {}, delaunay);
+  std::vector<double> d_avg;
+  average_neighbour_distance(x, delaunay.triangles, d_avg);
+  RemeshSettings graded{1.3, 0.0, true, SurfaceMode::constrained};
+  RemeshResult plain;
+  remesh_points(x, boundary_of(delaunay.triangles), delaunay.triangles, graded, d_avg, plain);
+  EXPECT_EQ(plain.rejected, 1);
+  EXPECT_LT(plain.area, delaunay.area - 1e-4);
+  graded.spacing_at = [](const Vec2& p) { return 0.25 + 1.75 * std::clamp(p.y() / 2.0, 0.0, 1.0); };
+  RemeshResult r;
+  remesh_points(x, boundary_of(delaunay.triangles), delaunay.triangles, graded, d_avg, r);
+  EXPECT_EQ(r.rejected, 0);
+  EXPECT_EQ(triangle_set(r.triangles), triangle_set(delaunay.triangles));
+  EXPECT_NEAR(r.area, delaunay.area, 1e-12);
+}
+
+// The field does not hide a void: the 6 x 6 block with an empty 3 x 3 centre opens as before when the spacing
+// everywhere is the grid's.
+TEST(FreeSurfaceRemesh, StillOpensWhereTheSpacingFieldIsTheGrids) {
+  RectangleSpec spec;
+  spec.nx = 6, spec.ny = 6, spec.size = Vec2(6.0, 6.0);
+  const MeshData grid = generate_rectangle(spec);
+  std::vector<Vec2> x;
+  for (const Vec2& p : grid.X)
+    if (!(p.x() > 1.5 && p.x() < 4.5 && p.y() > 1.5 && p.y() < 4.5)) x.push_back(p);
+  RemeshResult delaunay;
+  remesh_points(x, {}, RemeshSettings{1e9, 1.0, false}, {}, delaunay);
+  RemeshSettings s = settings(SurfaceMode::constrained);
+  RemeshResult without, with;
+  remesh_points(x, boundary_of(delaunay.triangles), delaunay.triangles, s, {}, without);
+  s.spacing_at = [](const Vec2&) { return 1.0; };
+  remesh_points(x, boundary_of(delaunay.triangles), delaunay.triangles, s, {}, with);
+  EXPECT_GT(with.rejected, 0);
+  EXPECT_EQ(triangle_set(with.triangles), triangle_set(without.triangles));
+}
+
 }  // namespace
 }  // namespace loom
