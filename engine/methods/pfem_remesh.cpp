@@ -163,7 +163,8 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
     std::vector<double> d_avg;
     if (settings.remesh.local) average_neighbour_distance(x, old_local, d_avg);  // eq 17 on the previous mesh
     RemeshSettings remesh = settings.remesh;
-    if (!settings.edits.graded.empty()) {
+    const auto grades_body = [b](const GradedWall& w) { return w.body == kNoIndex || w.body == Index(b); };
+    if (std::any_of(settings.edits.graded.begin(), settings.edits.graded.end(), grades_body)) {  // else as ungraded
       const double h0 = topo.spacing[b];
       remesh.spacing_at = [&settings, b, h0](const Vec2& p) { return local_spacing(settings.edits, Index(b), h0, p); };
     }
