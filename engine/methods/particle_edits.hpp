@@ -30,7 +30,7 @@ struct GradedWall {
 
 struct ParticleEditSettings {
   double insert_above = 0.0, remove_below = 0.0;  // factors of h0; 0: off
-  std::vector<GradedWall> graded;
+  std::vector<GradedWall> graded = {};
   bool active() const { return insert_above > 0.0 || remove_below > 0.0; }
 };
 

@@ -47,7 +47,7 @@ struct RemeshSettings {
   // fails the alpha test only if its circumradius also exceeds alpha times the spacing at its circumcentre: a
   // triangle of fine corners beside a graded wall has an empty circle that reaches into the coarse cells above
   // them, which says nothing of the body opening (the corners' l_char^loc is the fine spacing).
-  std::function<double(const Vec2&)> spacing_at;
+  std::function<double(const Vec2&)> spacing_at = nullptr;
 };
 
 struct RemeshResult {

@@ -149,16 +149,22 @@ TEST(FreeSurfaceRemesh, ClosesANarrowSlotButNotAWideOne) {
   }
 }
 
-// A 6 x 6 block whose 3 x 3 centre has no points (the previous mesh spanned it with large triangles): the
-// triangles in the hole fail the alpha test and have no edge on the surface, so the body opens there; the ones at
-// the hole's corners (circumradius 0.707) stay. The new outline has a second loop around the hole.
-TEST(FreeSurfaceRemesh, OpensWhereTheBodyTearsInside) {
+// The points of a 6 x 6 unit grid but for the 3 x 3 centre's.
+std::vector<Vec2> block_with_empty_centre() {
   RectangleSpec spec;
   spec.nx = 6, spec.ny = 6, spec.size = Vec2(6.0, 6.0);
   const MeshData grid = generate_rectangle(spec);
   std::vector<Vec2> x;
   for (const Vec2& p : grid.X)
     if (!(p.x() > 1.5 && p.x() < 4.5 && p.y() > 1.5 && p.y() < 4.5)) x.push_back(p);
+  return x;
+}
+
+// A 6 x 6 block whose 3 x 3 centre has no points (the previous mesh spanned it with large triangles): the
+// triangles in the hole fail the alpha test and have no edge on the surface, so the body opens there; the ones at
+// the hole's corners (circumradius 0.707) stay. The new outline has a second loop around the hole.
+TEST(FreeSurfaceRemesh, OpensWhereTheBodyTearsInside) {
+  const std::vector<Vec2> x = block_with_empty_centre();
   RemeshResult delaunay;  // the previous mesh: every triangle of the hull
   remesh_points(x, {}, RemeshSettings{1e9, 1.0, false}, {}, delaunay);
   ASSERT_NEAR(delaunay.area, 36.0, 1e-12);
@@ -240,12 +246,7 @@ TEST(FreeSurfaceRemesh, KeepsASliverOfFineCornersBesideCoarseCells) {
 // The field does not hide a void: the 6 x 6 block with an empty 3 x 3 centre opens as before when the spacing
 // everywhere is the grid's.
 TEST(FreeSurfaceRemesh, StillOpensWhereTheSpacingFieldIsTheGrids) {
-  RectangleSpec spec;
-  spec.nx = 6, spec.ny = 6, spec.size = Vec2(6.0, 6.0);
-  const MeshData grid = generate_rectangle(spec);
-  std::vector<Vec2> x;
-  for (const Vec2& p : grid.X)
-    if (!(p.x() > 1.5 && p.x() < 4.5 && p.y() > 1.5 && p.y() < 4.5)) x.push_back(p);
+  const std::vector<Vec2> x = block_with_empty_centre();
   RemeshResult delaunay;
   remesh_points(x, {}, RemeshSettings{1e9, 1.0, false}, {}, delaunay);
   RemeshSettings s = settings(SurfaceMode::constrained);
