@@ -35,4 +35,18 @@ void for_each_in(const Index* items, Index n, Body&& body, Execution exec = Exec
   for_each_index(n, [&](Index k) { body(items[k]); }, exec, grain);
 }
 
+// for_each_in, calling ahead(items[k + 1]) before body(items[k]): `ahead` prefetches what body will read for
+// the next item. The next item may belong to another task's range; that only warms a line it would read too.
+template <class Ahead, class Body>
+void for_each_in_looking_ahead(const Index* items, Index n, Ahead&& ahead, Body&& body, Execution exec = Execution::parallel,
+                               Index grain = kParallelGrain) {
+  for_each_index(
+      n,
+      [&](Index k) {
+        if (k + 1 < n) ahead(items[k + 1]);
+        body(items[k]);
+      },
+      exec, grain);
+}
+
 }  // namespace loom

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/prefetch.hpp"
 #include "engine/core/types.hpp"
 
 namespace loom {
@@ -59,5 +60,15 @@ class Column {
   std::vector<T> values_;
   bool used_ = false;
 };
+
+// Prefetches entry i of a column, or of a per-entity vector, if it holds one (engine/core/prefetch.hpp).
+template <class T>
+void prefetch_row(const Column<T>& column, Index i) {
+  if (i < column.size()) prefetch_object(column[i]);
+}
+template <class T>
+void prefetch_row(const std::vector<T>& values, Index i) {
+  if (std::size_t(i) < values.size()) prefetch_object(values[std::size_t(i)]);
+}
 
 }  // namespace loom

@@ -37,6 +37,13 @@ struct PointLocations {
   Index size() const { return cell.size(); }
   Index count_in(Index c) const { return cell_offsets[std::size_t(c) + 1] - cell_offsets[std::size_t(c)]; }
   const Index* points_in(Index c) const { return by_cell.data() + cell_offsets[std::size_t(c)]; }
+  // Prefetches the rows of cell c's points in the given columns (or per-point vectors): loops over cells call it
+  // for the next cell (engine/core/prefetch.hpp).
+  template <class... PointColumns>
+  void prefetch_points_in(Index c, const PointColumns&... columns) const {
+    const Index* pts = points_in(c);
+    for (Index k = 0; k < count_in(c); ++k) (prefetch_row(columns, pts[k]), ...);
+  }
 
   void resize(Index n) {
     cell.resize(n, kNoIndex);

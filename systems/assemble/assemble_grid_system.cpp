@@ -37,7 +37,8 @@ Vec<D> body_force_of(const BoundaryConditions<D>& bc, Index p) {
 
 template <int NC, int D>
 void assemble_displacement(const Args<D>& x) {
-  for_each_active_cell_by_colour(x.act, [&](Index c) {
+  const auto ahead = [&](Index c) { x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body); };
+  for_each_active_cell_by_colour_looking_ahead(x.act, ahead, [&](Index c) {
     NodalVectors<NC, D> du;
     for (int a = 0; a < NC; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
     ElementVector<NC, D> r = ElementVector<NC, D>::Zero();
@@ -68,7 +69,10 @@ double cell_size_squared(double measure) {
 template <int NC, int D>
 void assemble_mixed(const Args<D>& x) {
   const double dt = x.ctx.dt;
-  for_each_active_cell_by_colour(x.act, [&](Index c) {
+  const auto ahead = [&](Index c) {
+    x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body, x.particles.mass, x.bc.particle_body_force);
+  };
+  for_each_active_cell_by_colour_looking_ahead(x.act, ahead, [&](Index c) {
     UpCellValues<NC, D> cell;
     for (int a = 0; a < NC; ++a) {
       const Index i = x.grid.node(c, a);

@@ -72,7 +72,11 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
   const Index fem_from = act.always_active_from;
   // About 64 particles' work per task: cells of a fine body hold tens to thousands of them.
   const Index grain = std::max<Index>(1, 64 * act.n_active_cells() / std::max<Index>(1, particles.X.size()));
-  for_each_active_cell_by_colour(act, [&](Index c) {
+  const auto ahead = [&](Index c) {
+    loc.prefetch_points_in(c, loc.N, loc.xi, loc.F, loc.receding, particles.mass, particles.volume, particles.F, particles.v, particles.a,
+                           particles.body, bc.particle_body_force);
+  };
+  for_each_active_cell_by_colour_looking_ahead(act, ahead, [&](Index c) {
     const bool fem_cell = fem_from != kNoIndex && c >= fem_from;
     if ((pass == CellPass::particle_cells && fem_cell) || (pass == CellPass::fem_cells && !fem_cell)) return;
     const Index entry = act.scatter_entry[std::size_t(c)];

@@ -21,6 +21,14 @@ void for_each_active_cell_by_colour(const GridActivity& act, Body&& body, Index 
     for_each_in(act.active_by_colour.data() + act.colour_offsets[k], act.colour_offsets[k + 1] - act.colour_offsets[k], body,
                 Execution::parallel, grain);
 }
+// The same, with ahead(c') called for the next cell of the colour before body(c): ahead prefetches what body reads
+// (PointLocations::prefetch_points_in).
+template <class Ahead, class Body>
+void for_each_active_cell_by_colour_looking_ahead(const GridActivity& act, Ahead&& ahead, Body&& body, Index grain = kParallelGrain) {
+  for (std::size_t k = 0; k + 1 < act.colour_offsets.size(); ++k)
+    for_each_in_looking_ahead(act.active_by_colour.data() + act.colour_offsets[k], act.colour_offsets[k + 1] - act.colour_offsets[k], ahead,
+                              body, Execution::parallel, grain);
+}
 
 template <int D>
 double grid_dof_value(const Nodes<D>& g, Index dof, int pn) {

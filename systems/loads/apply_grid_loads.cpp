@@ -64,7 +64,8 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<D>&
   }
   // Particle Newmark (seed 004) applies the body force at the particles in its kernel, and takes no tractions.
   if (ctx.scene && ctx.scene->mpm.scheme == MpmScheme::particle_newmark) return;
-  for_each_occupied_cell_by_colour(grid, particle_loc, [&](Index c) {
+  const auto ahead = [&](Index c) { particle_loc.prefetch_points_in(c, particles.mass, bc.particle_body_force, particle_loc.N); };
+  for_each_occupied_cell_by_colour_looking_ahead(grid, particle_loc, ahead, [&](Index c) {
     const Index* pts = particle_loc.points_in(c);
     for (Index k = 0; k < particle_loc.count_in(c); ++k) {
       const Index p = pts[k];

@@ -53,7 +53,10 @@ void project_residuals(const StepContext& ctx, const std::vector<BodyMaterial>& 
   for_each_index(g.size(), [&](Index i) { g.proj_u[i].setZero(), g.proj_p[i] = 0.0; });
   for (std::size_t k = 0; k + 1 < activity.colour_offsets.size(); ++k) {
     const Index* cells = activity.active_by_colour.data() + activity.colour_offsets[k];
-    for_each_in(cells, activity.colour_offsets[k + 1] - activity.colour_offsets[k], [&](Index c) {
+    const auto ahead = [&](Index c) {
+      loc.prefetch_points_in(c, loc.N, particles.F, particles.volume, particles.mass, particles.body, bc.particle_body_force);
+    };
+    for_each_in_looking_ahead(cells, activity.colour_offsets[k + 1] - activity.colour_offsets[k], ahead, [&](Index c) {
       if (grid.stride == 4) project_cell<4, D>(ctx, dynamic, materials, grid, particles, loc, bc, g, c);
       else if constexpr (D == 2) project_cell<3, 2>(ctx, dynamic, materials, grid, particles, loc, bc, g, c);
     });

@@ -17,7 +17,11 @@ void project_to_grid(const StepContext&, const Cells& grid, const Points<D>& par
     if (volumes) g.lumped_volume[i] = 0.0;
   });
   // 2. Mass-weighted sums, cell by cell (race-free: the cells of a colour share no node).
-  for_each_occupied_cell_by_colour(grid, loc, [&](Index c) {
+  const auto ahead = [&](Index c) {
+    loc.prefetch_points_in(c, particles.mass, loc.N, particles.v, particles.a, particles.pressure, particles.proj_u, particles.proj_p);
+    if (volumes) loc.prefetch_points_in(c, particles.volume, particles.F);
+  };
+  for_each_occupied_cell_by_colour_looking_ahead(grid, loc, ahead, [&](Index c) {
     const Index* corner = grid.cell_nodes(c);
     const Index* pts = loc.points_in(c);
     for (Index k = 0; k < loc.count_in(c); ++k) {

@@ -24,6 +24,10 @@ void project_to_grid(const StepContext& ctx, const Cells& grid, const Points<D>&
 // Runs body(c) for every cell holding points, colour by colour, the cells of a colour in parallel.
 template <class Body>
 void for_each_occupied_cell_by_colour(const Cells& grid, const PointLocations& loc, Body&& body);
+// The same, calling ahead(c') for the next cell of the colour before body(c): ahead prefetches the rows of its
+// points that body reads (PointLocations::prefetch_points_in).
+template <class Ahead, class Body>
+void for_each_occupied_cell_by_colour_looking_ahead(const Cells& grid, const PointLocations& loc, Ahead&& ahead, Body&& body);
 
 }  // namespace loom
 
@@ -34,6 +38,16 @@ void loom::for_each_occupied_cell_by_colour(const Cells& grid, const PointLocati
   for (Index k = 0; k < grid.n_colours(); ++k) {
     const Index begin = grid.colour_offsets[std::size_t(k)], end = grid.colour_offsets[std::size_t(k) + 1];
     for_each_in(grid.by_colour.data() + begin, end - begin, [&](Index c) {
+      if (loc.count_in(c) > 0) body(c);
+    });
+  }
+}
+
+template <class Ahead, class Body>
+void loom::for_each_occupied_cell_by_colour_looking_ahead(const Cells& grid, const PointLocations& loc, Ahead&& ahead, Body&& body) {
+  for (Index k = 0; k < grid.n_colours(); ++k) {
+    const Index begin = grid.colour_offsets[std::size_t(k)], end = grid.colour_offsets[std::size_t(k) + 1];
+    for_each_in_looking_ahead(grid.by_colour.data() + begin, end - begin, ahead, [&](Index c) {
       if (loc.count_in(c) > 0) body(c);
     });
   }
