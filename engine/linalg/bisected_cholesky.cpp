@@ -15,7 +15,8 @@
 // bit; they differ from the unsplit CHOLMOD in round-off.
 #include "engine/linalg/bisected_cholesky.hpp"
 
-#include <cholmod.h>
+#include "engine/linalg/cholmod_lower.hpp"
+
 #include <oneapi/tbb/parallel_invoke.h>
 
 #include <Eigen/Cholesky>
@@ -28,28 +29,7 @@
 namespace loom {
 namespace {
 
-// A CSC matrix in CHOLMOD's int layout, one triangle (stype 1 upper, -1 lower), whose values are gathered from A.
-struct Csc {
-  std::vector<int> p, i;
-  std::vector<double> x;
-  std::vector<int> source;  // x[k] = A.valuePtr()[source[k]]
-  cholmod_sparse view(int n, int stype) {
-    cholmod_sparse s{};
-    s.nrow = s.ncol = std::size_t(n);
-    s.nzmax = i.size();
-    s.p = p.data(), s.i = i.data(), s.x = x.data();
-    s.stype = stype, s.itype = CHOLMOD_INT, s.xtype = CHOLMOD_REAL, s.dtype = CHOLMOD_DOUBLE;
-    s.sorted = 1, s.packed = 1;
-    return s;
-  }
-};
-
-void set_relaxed_supernodes(cholmod_common& c) {  // as the unsplit back-end (linear_solver.cpp)
-  c.print = 0;
-  c.nrelax[0] = 8, c.nrelax[1] = 32, c.nrelax[2] = 96;
-  c.zrelax[0] = 0.8, c.zrelax[1] = 0.2, c.zrelax[2] = 0.1;
-  c.supernodal = CHOLMOD_SUPERNODAL;
-}
+using Csc = CholmodCsc;
 
 // One half: its dofs in the factor's order (interior by AMD, then the interface T in the matrix's order), the lower
 // triangle of its block in that order, its factor, the coupling A_Ts.
@@ -142,7 +122,7 @@ class BisectedCholesky final : public LinearSolver {
     auto run = [&](int s) {
       Half& h = halves_[std::size_t(s)];
       if (h.size() == 0) return;
-      for (std::size_t q = 0; q < h.H.x.size(); ++q) h.H.x[q] = a[h.H.source[q]];
+      h.H.gather(A);
       cholmod_sparse view = h.H.view(h.size(), -1);
       cholmod_factorize(&view, h.L, &h.c);  // natural order, lower triangle: CHOLMOD factorises it as it is
       if (h.c.status < CHOLMOD_OK || h.L->minor < h.L->n) return void(ok[s] = false);  // not positive definite
@@ -281,24 +261,10 @@ class BisectedCholesky final : public LinearSolver {
       std::copy(p, p + ni, perm.begin());
       cholmod_free_factor(&Li, &h.c);
     }
-    std::vector<int> position(static_cast<std::size_t>(nh));
-    for (int q = 0; q < nh; ++q) position[std::size_t(perm[std::size_t(q)])] = q;
-    std::vector<std::pair<int, int>> col;  // (row in the factor's order, source)
-    std::vector<int> dofs(static_cast<std::size_t>(nh));
-    for (int q = 0; q < nh; ++q) {
-      const int g = h.dofs[std::size_t(perm[std::size_t(q)])];
-      dofs[std::size_t(q)] = g;
-      col.clear();
-      for_each_in_block(g, [&](int li, int src) {
-        const int r = position[std::size_t(li)];
-        if (r >= q) col.push_back({r, src});
-      });
-      std::sort(col.begin(), col.end());
-      for (const auto& [r, src] : col) h.H.i.push_back(r), h.H.source.push_back(src);
-      h.H.p.push_back(int(h.H.i.size()));
-    }
+    std::vector<int> dofs(static_cast<std::size_t>(nh)), position(static_cast<std::size_t>(nh));
+    for (int q = 0; q < nh; ++q) dofs[std::size_t(q)] = h.dofs[std::size_t(perm[std::size_t(q)])], position[std::size_t(perm[std::size_t(q)])] = q;
+    build_permuted_lower(A, nh, [&](int g) { return part[std::size_t(g)] == side ? position[std::size_t(local[std::size_t(g)])] : -1; }, h.H);
     h.dofs = std::move(dofs);
-    h.H.x.assign(h.H.i.size(), 0.0);
     h.c.nmethods = 1, h.c.method[0].ordering = CHOLMOD_NATURAL, h.c.postorder = 0;
     cholmod_sparse view = h.H.view(nh, -1);
     h.L = cholmod_analyze(&view, &h.c);

@@ -1,28 +1,21 @@
 #include "engine/linalg/linear_solver.hpp"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/UmfPackSupport>
 
 #include "engine/linalg/bisected_cholesky.hpp"
+#include "engine/linalg/cholmod_lower.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
+#include <vector>
 
 namespace loom {
 namespace {
 
-// Eigen keeps the factor and UMFPACK's report protected: these expose the condition estimates.
-// The upper triangle: for a fill-reducing permutation CHOLMOD then builds the permuted lower triangle with one
-// transpose per factorisation instead of two (its "fastest option for factoring a permuted matrix"; the
-// patterns are symmetric, so either triangle holds the matrix): 9 % of the numeric factorisation of the
-// MPM cantilever at 10^4 particles (perf/compare/README.md).
-class CholmodLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> {
- public:
-  // (min diag L / max diag L)^2: CHOLMOD's own cheap estimate of 1 / cond(A).
-  double rcond() { return this->m_cholmodFactor ? cholmod_rcond(this->m_cholmodFactor, &this->cholmod()) : 0.0; }
-};
+// Eigen keeps UMFPACK's report protected: these expose the condition estimate.
 template <class Matrix>
 class UmfpackLUOf : public Eigen::UmfPackLU<Matrix> {
  public:
@@ -41,33 +34,78 @@ using UmfpackLU = UmfpackLUOf<SparseMatrix>;
 using WideMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>;
 using WideUmfpackLU = UmfpackLUOf<WideMatrix>;
 
+// Supernodal LL^T by CHOLMOD, the matrix stored as the lower triangle in the factor's order (cholmod_lower.hpp).
+// The ordering is CHOLMOD's default choice for the matrix (AMD, or METIS where AMD fills much) with its weighted
+// postorder, as when Eigen's wrapper handed CHOLMOD the upper triangle; the permuted matrix, analysed in natural
+// order, then has the same elimination tree, column counts and supernodes, and its factorisation performs the same
+// operations on the same numbers: the factor and every solve are the same bit for bit, without the transpose
+// CHOLMOD made at every factorisation of a matrix given with its ordering (5 % of the MPM cantilever's step).
 class CholmodSolver final : public LinearSolver {
  public:
-  CholmodSolver() {
-    cholmod_common& c = solver_.cholmod();
-    c.print = 0;  // failures are reported by loom, not printed by CHOLMOD
-    // Supernode amalgamation twice as relaxed as CHOLMOD's defaults (nrelax 4, 16, 48; zrelax 0.8, 0.1, 0.05):
-    // the supernodes of 2D meshes are small, and larger ones with a few explicit zeros run the dense kernels
-    // better. Numeric factorisation 13-21 % faster on the MPM cantilever (10^4-10^5 particles) and Cook's
-    // membrane at 10^5 cells, unchanged on small meshes (perf/compare/README.md).
-    c.nrelax[0] = 8, c.nrelax[1] = 32, c.nrelax[2] = 96;
-    c.zrelax[0] = 0.8, c.zrelax[1] = 0.2, c.zrelax[2] = 0.1;
+  CholmodSolver() { cholmod_start(&c_), set_relaxed_supernodes(c_); }
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+  ~CholmodSolver() override {
+    release();
+    cholmod_finish(&c_);
   }
   const char* name() const override { return "cholmod"; }
-  void analyze(const SparseMatrix& A) override { solver_.analyzePattern(A); }
+  void analyze(const SparseMatrix& A) override {
+    release();
+    const int n = int(A.rows());
+    cholmod_sparse upper{};  // the pattern; stype 1: CHOLMOD reads the upper triangle only
+    upper.nrow = upper.ncol = std::size_t(n), upper.nzmax = std::size_t(A.nonZeros());
+    upper.p = const_cast<int*>(A.outerIndexPtr()), upper.i = const_cast<int*>(A.innerIndexPtr()), upper.x = nullptr;
+    upper.stype = 1, upper.itype = CHOLMOD_INT, upper.xtype = CHOLMOD_PATTERN, upper.dtype = CHOLMOD_DOUBLE, upper.sorted = 1, upper.packed = 1;
+    // CHOLMOD's default strategy; only its (postordered) permutation is read, so the simplicial analysis, which
+    // skips the supernodal pattern that the analysis of the permuted matrix builds.
+    c_.nmethods = 0, c_.postorder = 1, c_.supernodal = CHOLMOD_SIMPLICIAL;
+    cholmod_factor* ordering = cholmod_analyze(&upper, &c_);
+    c_.supernodal = CHOLMOD_SUPERNODAL;
+    if (!ordering) throw std::runtime_error("cholmod: the fill-reducing ordering failed");
+    const int* perm = static_cast<const int*>(ordering->Perm);
+    order_.assign(perm, perm + n);
+    cholmod_free_factor(&ordering, &c_);
+    std::vector<int> position(static_cast<std::size_t>(n));
+    for (int q = 0; q < n; ++q) position[std::size_t(order_[std::size_t(q)])] = q;
+    build_permuted_lower(A, n, [&](int g) { return position[std::size_t(g)]; }, H_);
+    c_.nmethods = 1, c_.method[0].ordering = CHOLMOD_NATURAL, c_.postorder = 0;
+    cholmod_sparse view = H_.view(n, -1);
+    L_ = cholmod_analyze(&view, &c_);
+    if (!L_) throw std::runtime_error("cholmod: the symbolic analysis failed");
+    B_ = cholmod_allocate_dense(std::size_t(n), 1, std::size_t(n), CHOLMOD_REAL, &c_);
+  }
   bool factorize(const SparseMatrix& A) override {
-    solver_.factorize(A);
-    return solver_.info() == Eigen::Success;
+    H_.gather(A);
+    cholmod_sparse view = H_.view(int(A.rows()), -1);
+    cholmod_factorize(&view, L_, &c_);
+    return c_.status >= CHOLMOD_OK && L_->minor == L_->n;  // minor < n: not positive definite
   }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
-    x = solver_.solve(b);
-    return solver_.info() == Eigen::Success;
+    const int n = int(order_.size());
+    double* y = static_cast<double*>(B_->x);
+    for (int q = 0; q < n; ++q) y[q] = b[order_[std::size_t(q)]];
+    if (!cholmod_solve2(CHOLMOD_A, L_, B_, nullptr, &X_, nullptr, &Y_, &E_, &c_)) return false;
+    const double* z = static_cast<const double*>(X_->x);
+    x.resize(n);
+    for (int q = 0; q < n; ++q) x[order_[std::size_t(q)]] = z[q];
+    return true;
   }
-  double rcond() override { return solver_.rcond(); }
-  FactorSize factor_size() override { return {solver_.cholmod().lnz, solver_.cholmod().fl}; }
+  // (min diag L / max diag L)^2: CHOLMOD's own cheap estimate of 1 / cond(A).
+  double rcond() override { return L_ ? cholmod_rcond(L_, &c_) : 0.0; }
+  FactorSize factor_size() override { return {c_.lnz, c_.fl}; }
 
  private:
-  CholmodLLT solver_;
+  void release() {
+    cholmod_free_factor(&L_, &c_);
+    for (cholmod_dense** d : {&B_, &X_, &Y_, &E_}) cholmod_free_dense(d, &c_);
+  }
+
+  cholmod_common c_{};
+  std::vector<int> order_;  // the factor's q-th dof is the matrix's order_[q]
+  CholmodCsc H_;
+  cholmod_factor* L_ = nullptr;
+  cholmod_dense *B_ = nullptr, *X_ = nullptr, *Y_ = nullptr, *E_ = nullptr;
 };
 
 // UMFPACK's int version (umfpack_di) addresses its workspace with int: it runs out of memory once the
