@@ -37,13 +37,17 @@ Vec<D> body_force_of(const BoundaryConditions<D>& bc, Index p) {
 
 template <int NC, int D>
 void assemble_displacement(const Args<D>& x) {
-  const auto ahead = [&](Index c) { x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body); };
+  const auto ahead = [&](Index c) {
+    x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body);
+    if (x.opt.tangent) prefetch_scatter_row(x.act.scatter_entry[std::size_t(c)], x.system.scatter[0]);
+  };
   for_each_active_cell_by_colour_looking_ahead(x.act, ahead, [&](Index c) {
+    const Index entry = x.act.scatter_entry[std::size_t(c)];
+    if (x.opt.tangent) prefetch_scatter_entries(entry, x.system.scatter[0], x.system);
     NodalVectors<NC, D> du;
     for (int a = 0; a < NC; ++a) du.row(a) = x.g.u[x.grid.node(c, a)].transpose();
     ElementVector<NC, D> r = ElementVector<NC, D>::Zero();
     ElementMatrix<NC, D> K = ElementMatrix<NC, D>::Zero();
-    const Index entry = x.act.scatter_entry[std::size_t(c)];
     ElementMatrix<NC, D>* K_needed = x.opt.tangent || cell_lags(entry, x.system.scatter[0], x.bc, x.g, x.system.dofs) ? &K : nullptr;
     const Index* pts = x.loc.points_in(c);
     for (Index k = 0; k < x.loc.count_in(c); ++k) {
@@ -71,8 +75,10 @@ void assemble_mixed(const Args<D>& x) {
   const double dt = x.ctx.dt;
   const auto ahead = [&](Index c) {
     x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body, x.particles.mass, x.bc.particle_body_force);
+    if (x.opt.tangent) prefetch_scatter_row(x.act.scatter_entry[std::size_t(c)], x.system.scatter[0]);
   };
   for_each_active_cell_by_colour_looking_ahead(x.act, ahead, [&](Index c) {
+    if (x.opt.tangent) prefetch_scatter_entries(x.act.scatter_entry[std::size_t(c)], x.system.scatter[0], x.system);
     UpCellValues<NC, D> cell;
     for (int a = 0; a < NC; ++a) {
       const Index i = x.grid.node(c, a);
@@ -125,8 +131,13 @@ void assemble_ghost(const Args<2>& x) {
   const double mu = scene.materials[std::size_t(scene.bodies[std::size_t(mpm_body_index(scene))].material)].mu;
   const Cells& faces = x.act.ghost_faces;
   constexpr int NE = PN * kGhostFaceNodes<NC>;
+  const CellScatter& sc = x.system.scatter[1];
+  const auto ahead = [&](Index f) {
+    if (x.opt.tangent) prefetch_scatter_row(f, sc);
+  };
   for (std::size_t k = 0; k + 1 < faces.colour_offsets.size(); ++k)
-    for_each_in(faces.by_colour.data() + faces.colour_offsets[k], faces.colour_offsets[k + 1] - faces.colour_offsets[k], [&](Index f) {
+    for_each_in_looking_ahead(faces.by_colour.data() + faces.colour_offsets[k], faces.colour_offsets[k + 1] - faces.colour_offsets[k], ahead, [&](Index f) {
+      if (x.opt.tangent) prefetch_scatter_entries(f, sc, x.system);
       const auto s = std::size_t(f);
       const GhostFace<NC> face =
           ghost_face<NC>(x.grid, x.g, x.act.ghost_cells[2 * s], x.act.ghost_cells[2 * s + 1], x.act.ghost_ends[2 * s], x.act.ghost_ends[2 * s + 1]);
@@ -138,7 +149,7 @@ void assemble_ghost(const Args<2>& x) {
         if constexpr (PN == 3) w[PN * a + 2] = x.g.p[i];
       }
       Eigen::Matrix<double, NE, 1> r = K * w;
-      scatter_cell<NE>(f, x.system.scatter[1], x.bc, x.g, x.opt.tangent, r, K, x.system);
+      scatter_cell<NE>(f, sc, x.bc, x.g, x.opt.tangent, r, K, x.system);
     });
 }
 
