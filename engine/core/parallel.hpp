@@ -29,6 +29,14 @@ void for_each_index(Index n, Body&& body, Execution exec = Execution::parallel, 
                             });
 }
 
+// Sets values[0 .. n) to zero in parallel chunks: the tangent's value array, zeroed before every assembly, is 1.3 MB
+// at 10^4 MPM particles and 14 MB at 10^5, and zeroed by one thread it is the assembly's largest serial part.
+inline void zero_in_parallel(double* values, Index n) {
+  constexpr Index chunk = 1 << 14;
+  for_each_index((n + chunk - 1) / chunk, [&](Index k) { std::fill(values + k * chunk, values + std::min(n, (k + 1) * chunk), 0.0); },
+                 Execution::parallel, 8);
+}
+
 // Same, over an explicit list of indices (e.g. the cells of one colour).
 template <class Body>
 void for_each_in(const Index* items, Index n, Body&& body, Execution exec = Execution::parallel, Index grain = kParallelGrain) {

@@ -138,7 +138,7 @@ AssemblyResult assemble_particle_newmark(const StepContext& ctx, bool tangent, c
                                          const GridActivity& activity, const Nodes<2>& grid_nodes, const Points<2>& particles,
                                          const BoundaryConditions<2>& bc, PointLocations& loc, LinearSystem& system, Timers* timers) {
   auto& A = system.pattern.matrix;
-  if (tangent) std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+  if (tangent) zero_in_parallel(A.valuePtr(), A.nonZeros());
   system.residual_full.setZero();
   std::atomic<Index> inverted{0};
   if (grid.stride == 9 && activity.always_active_from != kNoIndex && timers) {

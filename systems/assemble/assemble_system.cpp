@@ -220,7 +220,7 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
   const bool tangent = mode == AssemblyMode::residual_and_tangent;
   const Inertia inertia = inertia_of(ctx);
   auto& A = system.pattern.matrix;
-  if (tangent) std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+  if (tangent) zero_in_parallel(A.valuePtr(), A.nonZeros());
   system.residual_full.setZero();
 
   std::atomic<Index> inverted{0};
