@@ -73,7 +73,7 @@ class CholmodSolver final : public LinearSolver {
     cholmod_sparse view = H_.view(n, -1);
     L_ = cholmod_analyze(&view, &c_);
     if (!L_) throw std::runtime_error("cholmod: the symbolic analysis failed");
-    B_ = cholmod_allocate_dense(std::size_t(n), 1, std::size_t(n), CHOLMOD_REAL, &c_);
+    if (n > 0) B_ = cholmod_allocate_dense(std::size_t(n), 1, std::size_t(n), CHOLMOD_REAL, &c_);
   }
   bool factorize(const SparseMatrix& A) override {
     H_.gather(A);
@@ -83,11 +83,12 @@ class CholmodSolver final : public LinearSolver {
   }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     const int n = int(order_.size());
+    x.resize(n);
+    if (n == 0) return true;  // no free dof (CHOLMOD allocates no empty dense matrix)
     double* y = static_cast<double*>(B_->x);
     for (int q = 0; q < n; ++q) y[q] = b[order_[std::size_t(q)]];
     if (!cholmod_solve2(CHOLMOD_A, L_, B_, nullptr, &X_, nullptr, &Y_, &E_, &c_)) return false;
     const double* z = static_cast<const double*>(X_->x);
-    x.resize(n);
     for (int q = 0; q < n; ++q) x[order_[std::size_t(q)]] = z[q];
     return true;
   }
