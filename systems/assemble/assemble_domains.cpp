@@ -20,7 +20,16 @@ void assemble_domains(const StepContext& ctx, bool tangent, const std::vector<Bo
   }
   const CellScatterer<L::size> out(map, scatter, bc, nodes, system);
   const Cells& stencil = domains.stencil;
-  for_each_cell_by_colour(stencil, [&](Index k) {
+  const auto ahead = [&](Index k) {
+    if (tangent) out.prefetch_row(k);
+    prefetch_object(domains.be_n[k]);
+    for (int a = 0; a < NEN; ++a) {
+      const Index n = stencil.node(k, a);
+      prefetch_object(nodes.u[n]), prefetch_object(nodes.u_n[n]);
+    }
+  };
+  for_each_cell_by_colour_looking_ahead(stencil, ahead, [&](Index k) {
+    if (tangent) out.prefetch_entries(k);
     SmoothedDomain<NEN> d;
     for (int a = 0; a < NEN; ++a) {
       const Index n = stencil.node(k, a);

@@ -70,7 +70,11 @@ void assemble_p1_block(const BlockArgs<2>& b) {
   const auto map = displacement_map<3>(b.system.dofs.per_node);
   const CellScatterer<6> out(map, b.scatter, b.bc, b.nodes, b.system);
   static constexpr int u_index[6] = {0, 1, 2, 3, 4, 5};
-  for_each_cell_by_colour(b.cells, [&](Index c) {
+  const auto ahead = [&](Index c) {
+    if (b.tangent) out.prefetch_row(c);
+  };
+  for_each_cell_by_colour_looking_ahead(b.cells, ahead, [&](Index c) {
+    if (b.tangent) out.prefetch_entries(c);
     const P1Cell cell = gather_p1_cell(b.nodes, b.cells, b.quad, c);
     P1Vector gap;
     const bool lagging = out.gap(c, gap);
@@ -99,7 +103,11 @@ void assemble_isoparametric_block(const BlockArgs<D>& b) {
     for (int i = 0; i < NE; ++i) k[std::size_t(i)] = i;
     return k;
   }();
-  for_each_cell_by_colour(b.cells, [&](Index c) {
+  const auto ahead = [&](Index c) {
+    if (b.tangent) out.prefetch_row(c);
+  };
+  for_each_cell_by_colour_looking_ahead(b.cells, ahead, [&](Index c) {
+    if (b.tangent) out.prefetch_entries(c);
     const auto cell = gather_isoparametric_cell<NEN, NQ, D>(b.nodes, b.cells, b.quad, c);
     ElementVector<NEN, D> gap;
     const bool lagging = out.gap(c, gap);
@@ -147,7 +155,11 @@ void assemble_uphi_block(const BlockArgs<D>& b) {
       for (int i = 0; i < D; ++i) k[std::size_t(D * a + i)] = S * a + i;
     return k;
   }();
-  for_each_cell_by_colour(b.cells, [&](Index c) {
+  const auto ahead = [&](Index c) {
+    if (b.tangent) out.prefetch_row(c);
+  };
+  for_each_cell_by_colour_looking_ahead(b.cells, ahead, [&](Index c) {
+    if (b.tangent) out.prefetch_entries(c);
     UPhiCellT<D> cell;
     for (int a = 0; a < S; ++a) {
       const Index n = b.cells.node(c, a);

@@ -11,6 +11,7 @@
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
 #include "engine/store/nodes.hpp"
+#include "systems/assemble/scatter_prefetch.hpp"
 
 namespace loom {
 
@@ -71,6 +72,10 @@ class CellScatterer {
     return lagging;
   }
 
+  // Look-ahead (scatter_prefetch.hpp): the next cell's scatter row; a cell's matrix entries before it is integrated.
+  void prefetch_row(Index c) const { prefetch_scatter_row(c, sc_); }
+  void prefetch_entries(Index c) const { prefetch_scatter_entries(c, sc_, system_); }
+
   void scatter(Index c, const Vector& r_in, const Matrix* K_in) const {
     const Vector* r = &r_in;
     const Matrix* K = K_in;
@@ -116,6 +121,14 @@ inline void for_each_cell_by_colour(const Cells& cells, Body&& cell_body) {
   for (Index k = 0; k < cells.n_colours(); ++k) {
     const Index begin = cells.colour_offsets[std::size_t(k)], end = cells.colour_offsets[std::size_t(k) + 1];
     for_each_in(cells.by_colour.data() + begin, end - begin, cell_body);
+  }
+}
+// The same, calling ahead(c') for the next cell of the colour before cell_body(c) (prefetches).
+template <class Ahead, class Body>
+inline void for_each_cell_by_colour_looking_ahead(const Cells& cells, Ahead&& ahead, Body&& cell_body) {
+  for (Index k = 0; k < cells.n_colours(); ++k) {
+    const Index begin = cells.colour_offsets[std::size_t(k)], end = cells.colour_offsets[std::size_t(k) + 1];
+    for_each_in_looking_ahead(cells.by_colour.data() + begin, end - begin, ahead, cell_body);
   }
 }
 

@@ -8,11 +8,11 @@
 #include <cmath>
 
 #include "engine/core/parallel.hpp"
-#include "engine/core/prefetch.hpp"
 #include "engine/linalg/linear_system.hpp"
 #include "engine/store/grid_activity.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/nodes.hpp"
+#include "systems/assemble/scatter_prefetch.hpp"
 
 namespace loom {
 
@@ -64,24 +64,6 @@ inline void pin_dormant_dofs(const GridActivity& act, bool tangent, LinearSystem
     for (Index dof : act.dormant_dofs) values[system.pattern.diagonal_slot[std::size_t(dofs.equation[std::size_t(dof)])]] = scale;
   }
   for (Index dof : act.dormant_dofs) system.residual_full[dof] = 0.0, system.residual[dofs.equation[std::size_t(dof)]] = 0.0;
-}
-
-// Look-ahead of the assembly loops (engine/core/prefetch.hpp): a cell's scatter row (its slots), called for the
-// next cell; then, with the row in cache, the matrix entries its slots name, called before the cell's points are
-// integrated so that the lines arrive by the time scatter_cell adds to them. Consecutive cells of a colour are
-// two grid cells apart and share no column, so each cell's rows and entries would otherwise miss the cache.
-inline void prefetch_scatter_row(Index entry, const CellScatter& sc) {
-  const std::size_t n = std::size_t(sc.dofs_per_cell) * std::size_t(sc.dofs_per_cell);
-  const char* row = reinterpret_cast<const char*>(sc.slot.data() + std::size_t(entry) * n);
-  for (std::size_t offset = 0; offset < n * sizeof(Index); offset += 64) prefetch_line(row + offset);
-}
-inline void prefetch_scatter_entries(Index entry, const CellScatter& sc, const LinearSystem& system) {
-  const double* values = system.pattern.matrix.valuePtr();
-  for (int b = 0; b < sc.dofs_per_cell; ++b)
-    for (int a = 0; a < sc.dofs_per_cell; a += 2) {  // a node's two rows share a line but at its end
-      const Index s = sc.matrix_slot(entry, a, b);
-      if (s != kNoIndex) prefetch_line(reinterpret_cast<const char*>(values + s));
-    }
 }
 
 template <int NE, int D>
