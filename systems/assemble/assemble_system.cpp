@@ -70,11 +70,7 @@ void assemble_p1_block(const BlockArgs<2>& b) {
   const auto map = displacement_map<3>(b.system.dofs.per_node);
   const CellScatterer<6> out(map, b.scatter, b.bc, b.nodes, b.system);
   static constexpr int u_index[6] = {0, 1, 2, 3, 4, 5};
-  const auto ahead = [&](Index c) {
-    if (b.tangent) out.prefetch_row(c);
-  };
-  for_each_cell_by_colour_looking_ahead(b.cells, ahead, [&](Index c) {
-    if (b.tangent) out.prefetch_entries(c);
+  for_each_cell_prefetching_scatter(b.cells, out, b.tangent, [&](Index c) {
     const P1Cell cell = gather_p1_cell(b.nodes, b.cells, b.quad, c);
     P1Vector gap;
     const bool lagging = out.gap(c, gap);
@@ -103,11 +99,7 @@ void assemble_isoparametric_block(const BlockArgs<D>& b) {
     for (int i = 0; i < NE; ++i) k[std::size_t(i)] = i;
     return k;
   }();
-  const auto ahead = [&](Index c) {
-    if (b.tangent) out.prefetch_row(c);
-  };
-  for_each_cell_by_colour_looking_ahead(b.cells, ahead, [&](Index c) {
-    if (b.tangent) out.prefetch_entries(c);
+  for_each_cell_prefetching_scatter(b.cells, out, b.tangent, [&](Index c) {
     const auto cell = gather_isoparametric_cell<NEN, NQ, D>(b.nodes, b.cells, b.quad, c);
     ElementVector<NEN, D> gap;
     const bool lagging = out.gap(c, gap);
@@ -155,11 +147,7 @@ void assemble_uphi_block(const BlockArgs<D>& b) {
       for (int i = 0; i < D; ++i) k[std::size_t(D * a + i)] = S * a + i;
     return k;
   }();
-  const auto ahead = [&](Index c) {
-    if (b.tangent) out.prefetch_row(c);
-  };
-  for_each_cell_by_colour_looking_ahead(b.cells, ahead, [&](Index c) {
-    if (b.tangent) out.prefetch_entries(c);
+  for_each_cell_prefetching_scatter(b.cells, out, b.tangent, [&](Index c) {
     UPhiCellT<D> cell;
     for (int a = 0; a < S; ++a) {
       const Index n = b.cells.node(c, a);

@@ -131,5 +131,17 @@ inline void for_each_cell_by_colour_looking_ahead(const Cells& cells, Ahead&& ah
     for_each_in_looking_ahead(cells.by_colour.data() + begin, end - begin, ahead, cell_body);
   }
 }
+// The cell loop of an assembly that scatters through `out`: with the tangent, the next cell's scatter row is
+// prefetched, and a cell's matrix entries before cell_body(c) integrates it.
+template <int NE, int D, class Body>
+inline void for_each_cell_prefetching_scatter(const Cells& cells, const CellScatterer<NE, D>& out, bool tangent, Body&& cell_body) {
+  const auto ahead = [&](Index c) {
+    if (tangent) out.prefetch_row(c);
+  };
+  for_each_cell_by_colour_looking_ahead(cells, ahead, [&](Index c) {
+    if (tangent) out.prefetch_entries(c);
+    cell_body(c);
+  });
+}
 
 }  // namespace loom
