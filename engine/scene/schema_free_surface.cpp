@@ -21,9 +21,9 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "penetration stays below 1 % of h while the contact pressure stays below E.")
                   .by_default("0").at_least(0));
   s.push_back(key("wall[].slip", K::choice,
-                  "free: frictionless (a symmetry plane); stick: a node in contact is also held at its first-contact point (the projection "
-                  "on the wall of where it was at the start of the step it first touched) by a tangential penalty k_N; it is let go "
-                  "when it leaves the wall.")
+                  "free: frictionless (a symmetry plane); stick: a node in contact is also held at its first-contact point (where its "
+                  "path in the step it first touched crossed the wall, so that the holding force grows from zero as it goes in) by a "
+                  "tangential penalty k_N; it is let go when it leaves the wall.")
                   .one_of({"free", "stick"}).by_default("free"));
   s.push_back(key("wall[].spacing", K::real,
                   "Remesh spacing at the wall (methods pfem and es_pfem, with remesh.insert_above): particles are inserted and "

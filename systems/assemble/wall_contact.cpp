@@ -8,39 +8,11 @@
 namespace loom {
 namespace {
 
-// The anchor of a stick contact during the step (see the header).
-Vec2 anchor(const Nodes<2>& nodes, Index i, const WallPlane& p) {
-  if (nodes.in_contact[i] != 0.0) return nodes.contact_point[i];
-  const Vec2 x_n = nodes.position_n(i);
-  return x_n - p.gap(x_n) * p.normal;
-}
-
-// The penalty force of plane p on node i at x (the residual's part; the wall pushes with minus this) and its
-// 2 x 2 tangent.
-struct NodeContact {
-  Vec2 r = Vec2::Zero();
-  Eigen::Matrix2d K = Eigen::Matrix2d::Zero();
-  double penetration = 0.0;
-};
-
 NodeContact contact_of(const Walls& walls, const WallPlane& p, const Nodes<2>& nodes, Index i, const Vec2& x) {
-  NodeContact c;
-  // A node exactly on the wall is in contact too: its force is zero but its tangent holds a body that starts
-  // resting on the wall (a static run would otherwise begin with a singular matrix).
-  const double g = p.gap(x);
-  if (!(g <= 0.0)) return c;
   const Wall& w = walls.walls[std::size_t(p.wall)];
   const double k = w.k_n * std::max(0.0, -nodes.contact_area[i].dot(p.normal));
-  const Eigen::Matrix2d nn = p.normal * p.normal.transpose();
-  c.penetration = -g;
-  c.r = k * g * p.normal;
-  c.K = k * nn;
-  if (w.stick) {
-    const Eigen::Matrix2d tt = Eigen::Matrix2d::Identity() - nn;
-    c.r += k * tt * (x - anchor(nodes, i, p));
-    c.K += k * tt;
-  }
-  return c;
+  const bool held = nodes.in_contact[i] != 0.0;
+  return node_contact(p, k, w.stick, held, held ? nodes.contact_point[i] : Vec2::Zero(), nodes.position_n(i), x);
 }
 
 // A node whose displacement is prescribed in both directions (a Dirichlet node, an inlet's driven row behind the
@@ -50,6 +22,38 @@ bool driven(const DofMap& dofs, Index i) {
 }
 
 }  // namespace
+
+Vec2 first_contact_point(const WallPlane& p, const Vec2& x_n, const Vec2& x) {
+  const double g_n = p.gap(x_n), g = p.gap(x);
+  if (!(g_n > 0.0)) return x_n - g_n * p.normal;
+  return x_n + (g_n / (g_n - g)) * (x - x_n);
+}
+
+NodeContact node_contact(const WallPlane& p, double k, bool stick, bool held, const Vec2& held_point, const Vec2& x_n, const Vec2& x) {
+  NodeContact c;
+  // A node exactly on the wall is in contact too: its force is zero but its tangent holds a body that starts
+  // resting on the wall (a static run would otherwise begin with a singular matrix).
+  const double g = p.gap(x);
+  if (!(g <= 0.0)) return c;
+  const Eigen::Matrix2d nn = p.normal * p.normal.transpose();
+  c.penetration = -g;
+  c.r = k * g * p.normal;
+  c.K = k * nn;
+  if (!stick) return c;
+  const Eigen::Matrix2d tt = Eigen::Matrix2d::Identity() - nn;
+  const double g_n = p.gap(x_n);
+  if (held || !(g_n > 0.0)) {  // a fixed anchor
+    c.r += k * tt * (x - (held ? held_point : first_contact_point(p, x_n, x)));
+    c.K += k * tt;
+    return c;
+  }
+  // Arriving in this step: x - c = phi (x - x_n) with phi = -g / (g_n - g), d phi / dx = -g_n / (g_n - g)^2 n^T.
+  const Vec2 dx = x - x_n;
+  const double phi = -g / (g_n - g), dphi = -g_n / ((g_n - g) * (g_n - g));
+  c.r += k * phi * (tt * dx);
+  c.K += k * (phi * tt + (tt * dx) * (dphi * p.normal).transpose());
+  return c;
+}
 
 void measure_contact_areas(const StepContext&, const std::vector<Cells>& cells, Nodes<2>& nodes) {
   std::fill(nodes.contact_area.begin(), nodes.contact_area.end(), Vec2::Zero());
@@ -105,7 +109,7 @@ void commit_wall_contact(const StepContext&, const Walls& walls, const std::vect
     Vec2 point = Vec2::Zero();
     for (const WallPlane& p : walls.planes) {
       if (!walls.walls[std::size_t(p.wall)].stick || !walls.acts_on(p, node_body[std::size_t(i)]) || !(p.gap(x) <= 0.0)) continue;
-      if (!touching) point = anchor(nodes, i, p);
+      if (!touching) point = nodes.in_contact[i] != 0.0 ? nodes.contact_point[i] : first_contact_point(p, nodes.position_n(i), x);
       touching = true;
     }
     nodes.in_contact[i] = touching ? 1.0 : 0.0;

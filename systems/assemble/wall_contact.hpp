@@ -6,8 +6,15 @@
 // carries the penalty
 //   r_i += k_N A_i g n,                    K_ii += k_N A_i n n^T          (normal)
 //   r_i += k_N A_i (I - n n^T)(x - c),     K_ii += k_N A_i (I - n n^T)    (stick walls)
-// with c the node's first-contact point: where it touched at an earlier converged step, or else the projection
-// on the plane of its position at the start of this step. The residual holds f_int - f_ext, so the force the
+// with c the node's first-contact point: where it touched at an earlier converged step, or else where its path
+// in this step, x_n -> x, crosses the plane: c = x_n + s (x - x_n), s = g_n / (g_n - g), so that the tangential
+// force of an arriving node grows from zero with its penetration, x - c = phi (x - x_n), phi = -g / (g_n - g),
+// and the residual stays continuous where it touches (the projection of x_n would switch on k_N A (x - x_n)_t at
+// once: a jump that stalls Newton on the nose of a spreading flow). The tangent then has the unsymmetric part
+// k_N A (I - n n^T)(x - x_n) (d phi / dg) n^T, d phi / dg = -g_n / (g_n - g)^2: exact with UMFPACK (the mixed
+// elements), its upper triangle only with an SPD back-end (displacement elements), in the step a node touches. A
+// node already behind the plane at the start of the step (g_n <= 0: a particle inserted there) takes the
+// projection of x_n. The residual holds f_int - f_ext, so the force the
 // wall exerts on the node is minus these terms. A resting body's nodes settle at g = -p / k_N (p the contact
 // pressure): k_N = 100 E / h keeps g below 1 % of h while p < E.
 #pragma once
@@ -21,6 +28,18 @@
 #include "engine/store/walls.hpp"
 
 namespace loom {
+
+// The penalty terms of one node, x its current and x_n its start-of-step position, k = k_N A_i; `held`: it
+// holds `held_point` from an earlier step.
+struct NodeContact {
+  Vec2 r = Vec2::Zero();  // the residual's part (the wall pushes with minus this)
+  Eigen::Matrix2d K = Eigen::Matrix2d::Zero();
+  double penetration = 0.0;
+};
+NodeContact node_contact(const WallPlane& p, double k, bool stick, bool held, const Vec2& held_point, const Vec2& x_n, const Vec2& x);
+
+// Where a node not yet held by a stick wall is anchored when it ends the step at x behind it (see above).
+Vec2 first_contact_point(const WallPlane& p, const Vec2& x_n, const Vec2& x);
 
 // Each node's outward boundary area vector in B_n: its share of each boundary edge (half of it on linear cells;
 // 1/6 to the corners and 2/3 to the mid-node of the three-node edges of tri6 and quad9, the integrals of their
