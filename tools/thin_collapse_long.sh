@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# The thin Bingham collapse (scenes/bingham_collapse_es.toml with tau0 = 5 Pa, mu = 3 Pa s, the ground graded to
+# 1.25 mm) run until its front is within 5 % of lubrication theory's arrested half-width: the first 10 s at the
+# scene's dt = 2e-3 s, then in steps of 1e-2 s with Newton's line search to a residual of 1e-6 (hours on one core;
+# docs/BENCHMARKS.md, thin collapse). mu = 3 Pa s spreads the sheet 10/3 times faster than the scene's 10 Pa s: the
+# shallow-layer model has no inertia, so its history at mu = 3 is the one at mu = 10 at 10/3 the time, and its
+# arrested state does not depend on mu. The walls' penalty is E / h of the graded ground (8e7 instead of 100 E / h:
+# penetration about 5 micrometres, 0.4 % of the ground's spacing; fewer Newton iterations, docs/free_surface.md).
+# A step that fails through all its cut-backs is retried from the last checkpoint in steps of 8e-3 s (and the next
+# failure again in 1e-2 s), so that the remeshes fall at other states.
+#   tools/thin_collapse_long.sh OUT [until_seconds=150] [loom=build/loom]
+set -u
+out=${1:?usage: tools/thin_collapse_long.sh OUT [until_seconds] [loom]}
+until=${2:-150}
+loom=${3:-build/loom}
+scene="$(dirname "$0")/../scenes/bingham_collapse_es.toml"
+sets=(--set 'material[0].tau0=5.0' --set 'material[0].viscosity=3.0' --set 'wall[0].spacing=0.00125'
+      --set 'wall[0].penalty=8e7' --set 'wall[1].penalty=8e7' --set time.steps=400000
+      --set 'time.stop_when={ probe = "front", rate_below = 2e-5, over = 30.0, after = 60.0 }'
+      --set output.checkpoint_every=250 --set output.every=2500 --threads 1 --quiet)
+# Steps of the long stage: from step 5000 at 10 s, 100 per second.
+last=$((5000 + (until - 10) * 100))
+if ! ls "$out"/checkpoint_*.loom > /dev/null 2>&1; then
+  "$loom" run "$scene" --out "$out" --stop-after 5000 "${sets[@]}" || exit $?
+fi
+dts=(1e-2 8e-3)
+for attempt in $(seq 0 40); do
+  dt=${dts[$((attempt % 2))]}
+  "$loom" run "$scene" --out "$out" --restart "$out" --set time.dt=$dt --stop-after $last \
+    --set solver.line_search=true --set solver.residual_relative=1e-6 "${sets[@]}"
+  rc=$?
+  [ $rc -ne 1 ] && exit $rc  # 0: reached the step or settled; 2: bad input
+  echo "thin_collapse_long: retrying from the last checkpoint of $out in steps of ${dts[$(((attempt + 1) % 2))]} s" >&2
+done
+exit 1
