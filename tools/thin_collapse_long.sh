@@ -13,6 +13,7 @@ set -u
 out=${1:?usage: tools/thin_collapse_long.sh OUT [until_seconds] [loom]}
 until=${2:-150}
 loom=${3:-build/loom}
+[[ $until =~ ^[0-9]+$ ]] && [ "$until" -gt 10 ] || { echo "tools/thin_collapse_long.sh: until_seconds must be a whole number above 10, not '$until'" >&2; exit 2; }
 scene="$(dirname "$0")/../scenes/bingham_collapse_es.toml"
 sets=(--set 'material[0].tau0=5.0' --set 'material[0].viscosity=3.0' --set 'wall[0].spacing=0.00125'
       --set 'wall[0].penalty=8e7' --set 'wall[1].penalty=8e7' --set time.steps=400000
