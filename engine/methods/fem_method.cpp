@@ -163,7 +163,7 @@ void FemRunT<D>::build_graph() {
   if (!m_.walls.empty()) {
     g.name_store(&m_.walls, "walls");
     g.name_store(&m_.node_body, "node_body");
-    g.add_system("measure_contact_areas", &measure_contact_areas, m_.cells, m_.nodes);
+    g.add_system("measure_contact_areas", &measure_contact_areas, m_.walls, m_.cells, m_.nodes);
   }
   g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.edges, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
@@ -337,7 +337,7 @@ void FemRunT<D>::write_initial_state() {
   assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
   if constexpr (D == 2)
     if (!m_.walls.empty()) {
-      measure_contact_areas(ctx_, m_.cells, m_.nodes);
+      measure_contact_areas(ctx_, m_.walls, m_.cells, m_.nodes);
       add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
     }
   if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium) set_equilibrium_acceleration();

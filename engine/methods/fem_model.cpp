@@ -55,7 +55,8 @@ FemModelT<D>::FemModelT(const SceneSpec& spec) : scene(spec) {
   for (const auto& b : scene.bodies) j_projection.push_back(b.j_projection);
   nodes.J_node.use(scene.scene.method == Method::es_pfem || std::count(j_projection.begin(), j_projection.end(), 1) > 0);
   nodes.in_contact.use(!scene.walls.empty());
-  for (auto* c : {&nodes.contact_area, &nodes.contact_point}) c->use(!scene.walls.empty());
+  nodes.contact_share.use(!scene.walls.empty());
+  nodes.contact_point.use(!scene.walls.empty());
   linear_solver = linear_solver_for(scene);
 
   // 2. Mesh, quadrature points and the reference geometry.

@@ -1,6 +1,7 @@
 #include "engine/scene/wall_options.hpp"
 
 #include "engine/scene/loader_support.hpp"
+#include "engine/store/walls.hpp"
 
 namespace loom {
 
@@ -26,6 +27,11 @@ void read_wall(SceneSpec& s, const TableReader& t) {
     // The material stays inside: left, right, bottom, top sides with inward normals.
     w.planes = {{b[0], Vec2(1, 0)}, {b[1], Vec2(-1, 0)}, {b[0], Vec2(0, 1)}, {b[1], Vec2(0, -1)}};
   }
+  std::size_t planes = w.planes.size();
+  for (const WallSpec& other : s.walls) planes += other.planes.size();
+  if (planes > std::size_t(kMaxWallPlanes))
+    t.error(w.planes.size() == 4 ? "box" : "normal", "the walls have " + std::to_string(planes) + " planes in all, at most " +
+                                                         std::to_string(kMaxWallPlanes) + " are supported (a box is four)");
   if (t.has("body")) {
     const std::string body = t.string("body");
     w.body = find_by_name(s.bodies, body);

@@ -5,6 +5,7 @@
 
 #include "engine/core/types.hpp"
 #include "engine/store/column.hpp"
+#include "engine/store/walls.hpp"
 
 namespace loom {
 
@@ -30,10 +31,11 @@ struct Nodes {
   Column<Vec<D>> proj_u;       // OSGS projections of the momentum and pressure residuals (seed 003 §5)
   Column<double> proj_p;
   Column<double> lumped_volume;  // OSGS: sum_p N_I V_p^n, the lumped matrix of the L2 projection
-  // Rigid walls (engine/store/walls.hpp): the node's share of the boundary in B_n as an outward area vector (its
-  // share of each boundary edge's length times the edge's outward normal; 0 inside the body), and, with stick
-  // walls, whether it was in contact at the last converged step and where it first touched.
-  Column<Vec<D>> contact_area;
+  // Rigid walls (engine/store/walls.hpp): the node's share of the boundary in B_n that faces each wall plane (entry
+  // p: the sum over its boundary edges of its share of the edge's length projected on plane p, max(0, -a_e . n_p)
+  // with a_e that share times the edge's outward normal; 0 inside the body), and, with stick walls, whether it was
+  // in contact at the last converged step and where it first touched.
+  Column<WallShares> contact_share;
   Column<double> in_contact;  // 1: in contact with a stick wall, 0: not
   Column<Vec<D>> contact_point;
 
@@ -49,7 +51,7 @@ struct Nodes {
   void for_each_column(Visit&& f) {
     f("X", X), f("u", u), f("u_n", u_n), f("v", v), f("v_n", v_n), f("a", a), f("a_n", a_n),
         f("lumped_mass", lumped_mass), f("phi", phi), f("phi_n", phi_n), f("p", p), f("p_n", p_n), f("J_node", J_node), f("proj_u", proj_u), f("proj_p", proj_p),
-        f("lumped_volume", lumped_volume), f("contact_area", contact_area), f("in_contact", in_contact), f("contact_point", contact_point);
+        f("lumped_volume", lumped_volume), f("contact_share", contact_share), f("in_contact", in_contact), f("contact_point", contact_point);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

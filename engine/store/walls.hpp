@@ -1,6 +1,7 @@
 // Walls: the rigid planes of a mesh-based run (seed 001 §1.8) with their penalties, built once from the scene;
-// the per-node contact state (boundary share, first-contact point) lives in Nodes (contact_area,
-// contact_point, in_contact) so that it follows the particles through PFEM remeshes and checkpoints.
+// the per-node contact state (boundary share facing each plane, first-contact point) lives in Nodes
+// (contact_share, contact_point, in_contact) so that it follows the particles through PFEM remeshes and
+// checkpoints.
 #pragma once
 
 #include <string>
@@ -9,6 +10,11 @@
 #include "engine/core/types.hpp"
 
 namespace loom {
+
+// A scene's walls have at most this many planes in all (a box is four), so that a node's share of the boundary
+// facing each of them is a fixed-size column entry.
+constexpr int kMaxWallPlanes = 8;
+using WallShares = Eigen::Matrix<double, kMaxWallPlanes, 1>;
 
 struct WallPlane {
   Vec2 point = Vec2::Zero();

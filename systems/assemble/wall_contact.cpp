@@ -8,9 +8,10 @@
 namespace loom {
 namespace {
 
-NodeContact contact_of(const Walls& walls, const WallPlane& p, const Nodes<2>& nodes, Index i, const Vec2& x) {
+NodeContact contact_of(const Walls& walls, std::size_t plane, const Nodes<2>& nodes, Index i, const Vec2& x) {
+  const WallPlane& p = walls.planes[plane];
   const Wall& w = walls.walls[std::size_t(p.wall)];
-  const double k = w.k_n * std::max(0.0, -nodes.contact_area[i].dot(p.normal));
+  const double k = w.k_n * nodes.contact_share[i][Index(plane)];
   const bool held = nodes.in_contact[i] != 0.0;
   return node_contact(p, k, w.stick, held, held ? nodes.contact_point[i] : Vec2::Zero(), nodes.position_n(i), x);
 }
@@ -55,8 +56,10 @@ NodeContact node_contact(const WallPlane& p, double k, bool stick, bool held, co
   return c;
 }
 
-void measure_contact_areas(const StepContext&, const std::vector<Cells>& cells, Nodes<2>& nodes) {
-  std::fill(nodes.contact_area.begin(), nodes.contact_area.end(), Vec2::Zero());
+void measure_contact_areas(const StepContext&, const Walls& walls, const std::vector<Cells>& cells, Nodes<2>& nodes) {
+  std::fill(nodes.contact_share.begin(), nodes.contact_share.end(), WallShares::Zero());
+  const auto planes = Index(walls.planes.size());
+  LOOM_ASSERT(planes <= kMaxWallPlanes, planes << " wall planes, at most " << kMaxWallPlanes);
   for (const Cells& cb : cells) {
     const int corners = corners_of_stride(cb.stride);
     const bool quadratic = cb.stride == 6 || cb.stride == 9;
@@ -64,10 +67,12 @@ void measure_contact_areas(const StepContext&, const std::vector<Cells>& cells, 
       // Counter-clockwise cells: the body lies left of a -> b, so the outward normal times the length is the
       // edge turned clockwise.
       const Vec2 d = nodes.position_n(e.b) - nodes.position_n(e.a), area(d.y(), -d.x());
+      WallShares facing = WallShares::Zero();
+      for (Index p = 0; p < planes; ++p) facing[p] = std::max(0.0, -area.dot(walls.planes[std::size_t(p)].normal));
       const double end = quadratic ? 1.0 / 6.0 : 0.5;
-      nodes.contact_area[e.a] += end * area;
-      nodes.contact_area[e.b] += end * area;
-      if (quadratic) nodes.contact_area[cb.node(e.cell, corners + e.side)] += (2.0 / 3.0) * area;
+      nodes.contact_share[e.a] += end * facing;
+      nodes.contact_share[e.b] += end * facing;
+      if (quadratic) nodes.contact_share[cb.node(e.cell, corners + e.side)] += (2.0 / 3.0) * facing;
     }
   }
 }
@@ -76,11 +81,11 @@ void add_wall_contact(const Walls& walls, const std::vector<Index>& node_body, c
   const DofMap& dofs = system.dofs;
   double* values = system.pattern.matrix.valuePtr();
   for_each_index(nodes.size(), [&](Index i) {
-    if (nodes.contact_area[i].isZero(0.0) || driven(dofs, i)) return;
+    if (nodes.contact_share[i].isZero(0.0) || driven(dofs, i)) return;
     const Vec2 x = nodes.position(i);
     NodeContact sum;
-    for (const WallPlane& p : walls.planes) {
-      if (!walls.acts_on(p, node_body[std::size_t(i)])) continue;
+    for (std::size_t p = 0; p < walls.planes.size(); ++p) {
+      if (!walls.acts_on(walls.planes[p], node_body[std::size_t(i)])) continue;
       const NodeContact c = contact_of(walls, p, nodes, i, x);
       sum.r += c.r, sum.K += c.K;
     }
@@ -126,11 +131,12 @@ std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index
   for (Index i = 0; i < nodes.size(); ++i) {  // serial: a sum in a fixed order
     if (driven(dofs, i)) continue;
     const Vec2 x = nodes.position_n(i);
-    for (const WallPlane& p : walls.planes) {
+    for (std::size_t q = 0; q < walls.planes.size(); ++q) {
+      const WallPlane& p = walls.planes[q];
       if (!walls.acts_on(p, node_body[std::size_t(i)])) continue;
       WallResult& r = results[std::size_t(p.wall)];
       r.penetration = std::max(r.penetration, -p.gap(x));
-      if (!nodes.contact_area[i].isZero(0.0)) r.force -= contact_of(walls, p, nodes, i, x).r;
+      if (!nodes.contact_share[i].isZero(0.0)) r.force -= contact_of(walls, q, nodes, i, x).r;
     }
   }
   return results;

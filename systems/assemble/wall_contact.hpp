@@ -1,12 +1,16 @@
 // Penalty contact of mesh nodes with rigid walls (seed 001 §1.8; engine/store/walls.hpp).
 //
 // A node i of a body the plane acts on, at x = X + u, is in contact when g = (x - x_w) . n <= 0. Its share of
-// the boundary that faces the wall, A_i = max(0, -a_i . n) with a_i its outward boundary area vector in B_n
-// (fixed during the step, so the tangent is exact; a corner node on a flat base counts only its base edge),
+// the boundary that faces the wall, A_i = sum_e max(0, -a_ie . n) over its boundary edges e, a_ie its share of
+// edge e's length times the edge's outward normal in B_n (fixed during the step, so the tangent is exact),
 // carries the penalty
 //   r_i += k_N A_i g n,                    K_ii += k_N A_i n n^T          (normal)
 //   r_i += k_N A_i (I - n n^T)(x - c),     K_ii += k_N A_i (I - n n^T)    (stick walls)
-// with c the node's first-contact point: where it touched at an earlier converged step, or else where its path
+// A_i is the node's tributary length of the penalty integral int k_N g N_i over the boundary that faces the
+// wall, each edge counted by its projection on the wall: a corner on a flat base counts only its base edge, and
+// the tip of a sharp nose its base edge, whatever its front edge does (a weight max(0, -(sum_e a_ie) . n) of
+// the summed area vector lets the front edge cancel the base and the tip go through the wall).
+// c is the node's first-contact point: where it touched at an earlier converged step, or else where its path
 // in this step, x_n -> x, crosses the plane: c = x_n + s (x - x_n), s = g_n / (g_n - g), so that the tangential
 // force of an arriving node grows from zero with its penetration, x - c = phi (x - x_n), phi = -g / (g_n - g),
 // and the residual stays continuous where it touches (the projection of x_n would switch on k_N A (x - x_n)_t at
@@ -41,10 +45,11 @@ NodeContact node_contact(const WallPlane& p, double k, bool stick, bool held, co
 // Where a node not yet held by a stick wall is anchored when it ends the step at x behind it (see above).
 Vec2 first_contact_point(const WallPlane& p, const Vec2& x_n, const Vec2& x);
 
-// Each node's outward boundary area vector in B_n: its share of each boundary edge (half of it on linear cells;
-// 1/6 to the corners and 2/3 to the mid-node of the three-node edges of tri6 and quad9, the integrals of their
-// edge shape functions) times the edge's length and outward normal. Interior nodes get 0.
-void measure_contact_areas(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<2>& nodes);
+// Each node's share of the boundary in B_n facing each wall plane, A_i above: its share of each boundary edge
+// (half of it on linear cells; 1/6 to the corners and 2/3 to the mid-node of the three-node edges of tri6 and
+// quad9, the integrals of their edge shape functions) times the edge's length projected on the plane, for the
+// edges whose outward normal points into the wall. Interior nodes get 0.
+void measure_contact_areas(const StepContext& ctx, const Walls& walls, const std::vector<Cells>& cells, Nodes<2>& nodes);
 
 // Adds the penalty terms of every node behind a wall to the assembled Newton system (residual_full, residual,
 // and with `tangent` the matrix). Each node writes only its own entries.
