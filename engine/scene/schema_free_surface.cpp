@@ -8,7 +8,9 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "Rigid walls (methods fem, pfem, es_pfem; [Reinold 2021] §4.4: ground and walls as planes with a penalty): every node of "
                   "the body that gets behind a wall, g = (x - point) . normal < 0, is pushed back by the force -k_N A g normal, A its "
                   "share of the body's boundary that faces the wall (half of each boundary edge, 1/6 and 2/3 on quadratic edges, "
-                  "projected on the wall), with the tangent in the Newton matrix. The nodes are those of the current mesh: PFEM particles that reach the wall feel it."));
+                  "projected on the wall, of the edges whose outward normal points into it: the tip of a sharp nose keeps its base edge's share), "
+                  "with the tangent in the Newton matrix. The nodes are those of the current mesh: PFEM particles that reach the wall feel it. "
+                  "At most 8 planes in all (a box is four)."));
   s.push_back(key("wall[].name", K::string, "Name wall_force and penetration probes refer to.").require());
   s.push_back(key("wall[].point", K::vec2, "A point of the wall's line."));
   s.push_back(key("wall[].normal", K::vec2, "Normal of the wall, pointing to the side the material occupies (need not be a unit vector)."));
