@@ -86,7 +86,8 @@ CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
 const CheckpointReader::Blob& CheckpointReader::find(const std::string& name, std::size_t element_size) const {
   auto it = blobs_.find(name);
   LOOM_CHECK(it != blobs_.end(), InputError,
-             path_ << ": error: the checkpoint has no entry " << name << ": the scene differs from the one it was written for");
+             path_ << ": error: the checkpoint has no entry " << name << ": the scene differs from the one it was written for, or the checkpoint was written by another loom build "
+                      "(a checkpoint is read back by the build that wrote it)");
   LOOM_CHECK(it->second.element_size == element_size, InputError,
              path_ << ": error: checkpoint entry " << name << " has elements of " << it->second.element_size << " bytes, expected "
                    << element_size << " (written by another loom build?)");
