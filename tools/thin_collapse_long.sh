@@ -10,14 +10,17 @@
 # failure again in 1e-2 s), so that the remeshes fall at other states.
 # GROUND_SPACING (m, default 1.25e-3) grades the ground to a finer first row; the walls' penalty stays E / h of it, so
 # that the penetration stays the same fraction of the ground's spacing (the held strip below the first row is first
-# order in that row's height: docs/free_surface.md).
-#   tools/thin_collapse_long.sh OUT [until_seconds=150] [loom=build/loom] [ground_spacing=1.25e-3]
+# order in that row's height: docs/free_surface.md). SPACING_RAMP (m, default 0: one body spacing, 5 mm) is the distance
+# over which the ground's spacing grows to the body's; over one body spacing the first row stays about 4.7 times the
+# ground's spacing at 1.25 mm (wall[].spacing_ramp in the README).
+#   tools/thin_collapse_long.sh OUT [until_seconds=150] [loom=build/loom] [ground_spacing=1.25e-3] [spacing_ramp=0]
 set -u
-usage="usage: tools/thin_collapse_long.sh OUT [until_seconds] [loom] [ground_spacing]"
+usage="usage: tools/thin_collapse_long.sh OUT [until_seconds] [loom] [ground_spacing] [spacing_ramp]"
 out=${1:?$usage}
 until=${2:-150}
 loom=${3:-build/loom}
 ground=${4:-0.00125}
+ramp=${5:-0}
 [[ $until =~ ^[0-9]+$ ]] && [ "$until" -gt 10 ] || { echo "tools/thin_collapse_long.sh: until_seconds must be a whole number above 10, not '$until'" >&2; exit 2; }
 # E = 1e5 Pa (the scene's paste): the penalty E / h, 8e7 at the default 1.25 mm.
 penalty=$(awk -v h="$ground" 'BEGIN { if (h + 0 <= 0 || h + 0 > 0.005) exit 1; printf "%.6g", 1e5 / h }') ||
@@ -27,6 +30,8 @@ sets=(--set 'material[0].tau0=5.0' --set 'material[0].viscosity=3.0' --set "wall
       --set "wall[0].penalty=$penalty" --set "wall[1].penalty=$penalty" --set time.steps=400000
       --set 'time.stop_when={ probe = "front", rate_below = 2e-5, over = 30.0, after = 60.0 }'
       --set output.checkpoint_every=250 --set output.every=2500 --threads 1 --quiet)
+# The scene's own ramp unless one is asked for: a run without it stays the run it was.
+[ "$ramp" != 0 ] && sets+=(--set "wall[0].spacing_ramp=$ramp")
 # Steps of the long stage: from step 5000 at 10 s, 100 per second.
 last=$((5000 + (until - 10) * 100))
 if ! ls "$out"/checkpoint_*.loom > /dev/null 2>&1; then

@@ -43,7 +43,8 @@ FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
     pfem_settings_.edits = {p.insert_above, p.remove_below, {}};
     for (const WallSpec& w : scene_.walls)
       if (w.spacing > 0.0)
-        for (const auto& [point, normal] : w.planes) pfem_settings_.edits.graded.push_back({point, normal, w.spacing, w.body});
+        for (const auto& [point, normal] : w.planes)
+          pfem_settings_.edits.graded.push_back({point, normal, w.spacing, w.body, w.spacing_ramp});
     topology_ = initial_topology(m_);
     check_inlets();
   }

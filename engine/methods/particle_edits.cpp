@@ -106,8 +106,9 @@ double local_spacing(const ParticleEditSettings& settings, Index b, double h0, c
   for (const GradedWall& w : settings.graded) {
     if (w.body != kNoIndex && w.body != b) continue;
     const double d = std::max(0.0, (x - w.point).dot(w.normal));
-    if (d >= h0) continue;  // beyond the ramp: exactly h0 (s + (h0 - s) * 1 may round below it)
-    h = std::min(h, w.spacing + (h0 - w.spacing) * (d / h0));
+    const double ramp = w.ramp > 0.0 ? w.ramp : h0;
+    if (d >= ramp) continue;  // beyond the ramp: exactly h0 (s + (h0 - s) * 1 may round below it)
+    h = std::min(h, w.spacing + (h0 - w.spacing) * (d / ramp));
   }
   return h;
 }

@@ -20,12 +20,13 @@
 
 namespace loom {
 
-// A wall line near which h0 is graded: from `spacing` on it to the body's h0 at a distance h0 on the side `normal`
-// points to. body: the only body it grades (kNoIndex: every body).
+// A wall line near which h0 is graded: from `spacing` on it to the body's h0 at a distance `ramp` (0: h0) on the
+// side `normal` points to. body: the only body it grades (kNoIndex: every body).
 struct GradedWall {
   Vec2 point = Vec2::Zero(), normal = Vec2::UnitY();
   double spacing = 0.0;
   Index body = kNoIndex;
+  double ramp = 0.0;
 };
 
 struct ParticleEditSettings {

@@ -201,6 +201,7 @@ struct WallSpec {
   double penalty = 0.0;  // k_N, force per unit length per unit penetration; 0: chosen from the material and mesh
   bool stick = false;
   double spacing = 0.0;  // remesh spacing at the wall (particle insertion and removal); 0: the body's
+  double spacing_ramp = 0.0;  // distance over which that spacing grows to the body's; 0: one body spacing
   SourceRef where;
 };
 

@@ -29,14 +29,20 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   .one_of({"free", "stick"}).by_default("free"));
   s.push_back(key("wall[].spacing", K::real,
                   "Remesh spacing at the wall (methods pfem and es_pfem, with remesh.insert_above): particles are inserted and "
-                  "removed against this spacing at the wall, growing linearly to the body's spacing one body spacing away, each "
+                  "removed against this spacing at the wall, growing linearly to the body's spacing over spacing_ramp, each "
                   "edge judged by the spacing at its midpoint (so an edge standing on the wall is split only when it is longer than "
-                  "about 1.7 / (1 - 0.85 (1 - s / h0)) times s); the alpha test takes a triangle as the body opening only if its "
+                  "about 1.7 / (1 - 0.85 (h0 - s) / ramp) times s); the alpha test takes a triangle as the body opening only if its "
                   "circumradius also exceeds alpha times the graded spacing at its circumcentre (the body's beyond the ramp). "
                   "0 (default): the body's spacing everywhere. Why: a stick "
                   "wall holds the particles on it, so the thrust of the paste below the next row of particles reaches the wall "
                   "without the paste yielding; a yield-stress deposit on a stick ground then holds a slope steeper by about that "
                   "row's height over the depth (docs/free_surface.md).")
+                  .by_default("0").at_least(0));
+  s.push_back(key("wall[].spacing_ramp", K::real,
+                  "Distance from the wall over which its spacing grows linearly to the body's h0 (with spacing). 0 (default): h0. "
+                  "Over one body spacing the growth per row is so steep that the rows next to the wall stay coarse (up to 1.7 / "
+                  "(1 - 0.85 (h0 - s) / ramp) times s, 4.7 s for s = h0 / 4): a longer ramp makes the first rows follow s "
+                  "(below about 3 s once (h0 - s) / ramp <= 1 / 2), at the cost of more particles.")
                   .by_default("0").at_least(0));
   // [[inlet]]
   s.push_back(key("inlet", K::table_array,

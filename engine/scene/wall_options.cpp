@@ -42,6 +42,9 @@ void read_wall(SceneSpec& s, const TableReader& t) {
   w.spacing = t.real("spacing");
   if (w.spacing > 0.0 && s.scene.method != Method::pfem && s.scene.method != Method::es_pfem)
     t.error("spacing", "the remesh spacing at a wall is used by methods pfem and es_pfem (they insert and remove particles)");
+  w.spacing_ramp = t.real("spacing_ramp");
+  if (w.spacing_ramp > 0.0 && !(w.spacing > 0.0))
+    t.error("spacing_ramp", "a ramp grades the wall's spacing, which is not given (set spacing > 0)");
   s.walls.push_back(w);
 }
 

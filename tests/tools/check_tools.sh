@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Smoke test of tools/study and tools/render (ctest label scene): a two-case study into a temporary
 # directory, then checks that the CSV has its columns and rows, that every plot and the picture are PNG
-# files, that tools/profile_folded reads a --profile run and that tools/arrest_balance.py reads walls as loom
-# does. Usage: check_tools.sh LOOM
+# files, that tools/profile_folded reads a --profile run, that tools/arrest_balance.py reads walls as loom
+# does and that tools/first_row.py measures a mesh's first row. Usage: check_tools.sh LOOM
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 loom=$1
@@ -32,4 +32,12 @@ tools/arrest_balance.py "$out/collapse" --tau0 1e4 --area 0.005 > "$out/balance"
 k=$(sed -n 's/.*k_N = \([0-9.e+]*\) N\/m^3.*/\1/p' "$out/balance")
 python3 -c "import sys; sys.exit(0 if abs(float('$k') / 2e9 - 1) < 1e-3 else 1)" \
   || { echo "arrest_balance: k_N = $k, expected 2e9"; cat "$out/balance"; exit 1; }
+# tools/first_row.py on the same resting column, its mesh's rows h = 5 mm apart: 11 particles on the ground and the
+# first row 5 mm above every one of them, less the column's own elastic shortening under its weight (rho g H / E
+# = 2.3 % at the base: 4.90 mm).
+frame=$(ls "$out"/collapse/*.vtu | tail -1)
+tools/first_row.py "$frame" > "$out/first_row" || { echo "first_row failed"; exit 1; }
+sed -n 's/.*on the ground \([0-9]*\), first row median \([0-9.]*\) mm, largest \([0-9.]*\) mm.*/\1 \2 \3/p' "$out/first_row" |
+  awk '{ ok = ($1 == 11 && $2 > 4.85 && $3 < 4.95 && $3 - $2 < 0.03) } END { exit !ok }' \
+  || { echo "first_row: expected 11 ground particles and a first row 4.85-4.95 mm above them:"; cat "$out/first_row"; exit 1; }
 echo "tools ok"

@@ -6,7 +6,8 @@
 //  - removal of an interior particle that came too close to a neighbour leaves the area exactly as it was and the
 //    remaining particles' fields untouched; a surface particle goes only into its neighbour along the surface;
 //  - particles with a prescribed displacement are never removed;
-//  - near a wall with a spacing of its own the spacing is graded, and the edits refine there only;
+//  - near a wall with a spacing of its own the spacing is graded, and the edits refine there only; a longer ramp
+//    makes the first row next to the wall follow its spacing;
 //  - the renumbered model is consistent: cells on particles only, every cell counter-clockwise, dofs rebuilt.
 #include <gtest/gtest.h>
 
@@ -154,6 +155,50 @@ TEST(ParticleInsertion, GradedNearAWallRefinesOnlyNearItUntilEveryEdgeFitsTheLoc
     }
   EXPECT_NEAR(area(m), area_before, 1e-14);
   expect_consistent(m, topo);
+}
+
+// The height of the first row: the highest particle joined by an edge to one on the wall y = 0, after remeshing
+// with `s`'s insertions until nothing changes.
+double first_row_height(const std::string& scene, const PfemSettings& s) {
+  FemModel m(testing::scene_from_text(scene));
+  PfemTopology topo = initial_topology(m);
+  Timers timers;
+  int passes = 0;
+  for (Index changed = 1; changed > 0 && passes < 12; ++passes) {
+    const RemeshReport r = remesh_model(s, 0.0, topo, m, timers);
+    changed = r.inserted + r.removed;
+  }
+  EXPECT_LT(passes, 12);
+  double highest = 0.0;
+  for (std::size_t t = 0; t < topo.triangles[0].size(); t += 3)
+    for (int e = 0; e < 3; ++e) {
+      const Vec2 xa = m.nodes.position_n(topo.triangles[0][t + std::size_t(e)]);
+      const Vec2 xb = m.nodes.position_n(topo.triangles[0][t + std::size_t((e + 1) % 3)]);
+      if (std::abs(xa.y()) < 1e-12) highest = std::max(highest, xb.y());
+      if (std::abs(xb.y()) < 1e-12) highest = std::max(highest, xa.y());
+    }
+  return highest;
+}
+
+// spacing_ramp: the spacing grows from s on the wall to h0 over the ramp instead of over h0. An edge from the wall
+// to height y is split unless y <= 1.7 (s + g y / 2), g = (h0 - s) / ramp, so the first row stays below
+// 1.7 s / (1 - 0.85 g): over one h0 with s = h0 / 4 that is 1.17 h0, not below the block's own rows, over 3 h0 it is
+// 0.54 h0. The graded block's first row must come out within that bound, below the default ramp's.
+TEST(ParticleInsertion, ALongerRampMakesTheFirstRowNextToTheWallFollowItsSpacing) {
+  const std::string scene = block_scene("es_pfem", "es_up", "");
+  FemModel m(testing::scene_from_text(scene));
+  const double h0 = initial_topology(m).spacing[0], s_w = 0.25 * h0, ramp = 3.0 * h0;
+  PfemSettings one = settings_of(m, 1.7, 0.3), three = settings_of(m, 1.7, 0.3);
+  one.edits.graded = {{Vec2(0.0, 0.0), Vec2(0.0, 1.0), s_w, kNoIndex}};
+  three.edits.graded = {{Vec2(0.0, 0.0), Vec2(0.0, 1.0), s_w, kNoIndex, ramp}};
+  EXPECT_DOUBLE_EQ(local_spacing(three.edits, 0, h0, Vec2(0.1, 0.0)), s_w);
+  EXPECT_DOUBLE_EQ(local_spacing(three.edits, 0, h0, Vec2(0.1, 1.5 * h0)), s_w + 0.5 * (h0 - s_w));
+  EXPECT_EQ(local_spacing(three.edits, 0, h0, Vec2(0.1, ramp)), h0);
+  EXPECT_DOUBLE_EQ(local_spacing(one.edits, 0, h0, Vec2(0.1, 0.5 * h0)), s_w + 0.5 * (h0 - s_w));
+  const double bound = 1.7 * s_w / (1.0 - 0.85 * (h0 - s_w) / ramp);
+  const double y_one = first_row_height(scene, one), y_three = first_row_height(scene, three);
+  EXPECT_LE(y_three, bound * (1.0 + 1e-12));
+  EXPECT_LT(y_three, 0.75 * y_one);
 }
 
 // An interior particle moved to within 0.15 h0 of its neighbour: it (or the neighbour) goes, the other particles
