@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The thin Bingham collapse (scenes/bingham_collapse_es.toml with tau0 = 5 Pa, mu = 3 Pa s, the ground graded to
-# 1.25 mm) run until it comes to rest (the front 5.6 % short of lubrication theory's arrested half-width): the first 10 s at the
+# 1.25 mm) run until it comes to rest (the front 5.6 % short of lubrication theory's arrested half-width; 3.7 % on a
+# ground graded to 0.625 mm, GROUND_SPACING below): the first 10 s at the
 # scene's dt = 2e-3 s, then in steps of 1e-2 s with Newton's line search to a residual of 1e-6 (hours on one core;
 # docs/BENCHMARKS.md, thin collapse). mu = 3 Pa s spreads the sheet 10/3 times faster than the scene's 10 Pa s: the
 # shallow-layer model has no inertia, so its history at mu = 3 is the one at mu = 10 at 10/3 the time, and its
