@@ -49,6 +49,17 @@ double area(const FemModel& m) {
   return a;
 }
 
+// Remeshes with `s`'s edits until a pass inserts and removes nothing, at most max_passes times; the passes made.
+int remesh_until_settled(const PfemSettings& s, PfemTopology& topo, FemModel& m, int max_passes) {
+  Timers timers;
+  int passes = 0;
+  for (Index changed = 1; changed > 0 && passes < max_passes; ++passes) {
+    const RemeshReport r = remesh_model(s, 0.0, topo, m, timers);
+    changed = r.inserted + r.removed;
+  }
+  return passes;
+}
+
 void expect_consistent(const FemModel& m, const PfemTopology& topo) {
   for (const Cells& cb : m.cells)
     for (Index c = 0; c < cb.size(); ++c) {
@@ -135,12 +146,7 @@ TEST(ParticleInsertion, GradedNearAWallRefinesOnlyNearItUntilEveryEdgeFitsTheLoc
   ASSERT_EQ(r_other.inserted + r_other.removed, 0);
   const double area_before = area(m);
   const Index n_before = topo.n_points;
-  int passes = 0;
-  for (Index changed = 1; changed > 0 && passes < 10; ++passes) {
-    const RemeshReport r = remesh_model(s, 0.0, topo, m, timers);
-    changed = r.inserted + r.removed;
-  }
-  ASSERT_LT(passes, 10);
+  ASSERT_LT(remesh_until_settled(s, topo, m, 10), 10);
   ASSERT_GT(topo.n_points, n_before);
   for (Index i = n_before; i < topo.n_points; ++i) EXPECT_LT(m.nodes.position_n(i).y(), h0);
   std::set<std::pair<Index, Index>> seen;
@@ -162,13 +168,7 @@ TEST(ParticleInsertion, GradedNearAWallRefinesOnlyNearItUntilEveryEdgeFitsTheLoc
 double first_row_height(const std::string& scene, const PfemSettings& s) {
   FemModel m(testing::scene_from_text(scene));
   PfemTopology topo = initial_topology(m);
-  Timers timers;
-  int passes = 0;
-  for (Index changed = 1; changed > 0 && passes < 12; ++passes) {
-    const RemeshReport r = remesh_model(s, 0.0, topo, m, timers);
-    changed = r.inserted + r.removed;
-  }
-  EXPECT_LT(passes, 12);
+  EXPECT_LT(remesh_until_settled(s, topo, m, 12), 12);
   double highest = 0.0;
   for (std::size_t t = 0; t < topo.triangles[0].size(); t += 3)
     for (int e = 0; e < 3; ++e) {
