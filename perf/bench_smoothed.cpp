@@ -5,6 +5,8 @@
 //    integration domains (`&model.edges`), 1 and 2 oneTBB threads. items_per_second: edges per second for
 //    es_up (interior and boundary edges together), cells per second for p1p1_uphi; counters edges, cells,
 //    edge_colours (summed over the interior and boundary stores), cell_colours.
+//  BM_SmoothedResidual/es_up/<divisions>/<threads>: the same with the residual alone (a line search's trial
+//    point needs no tangent).
 //  BM_Pattern/<element>/<divisions>: not timed; the sparsity of the Newton system the element couples,
 //    counters nnz_per_row = pattern.matrix.nonZeros() / rows, nnz, rows (es_up, fem_up, p1p1_uphi).
 //  BM_SmoothedNewton/<element>/<divisions>/<tbb threads>/<solver threads>: one full Newton iteration
@@ -146,14 +148,14 @@ SmoothedBenchRun& run_of(const std::string& element, int divisions) {
 
 // ---- 1. Assembly rate ------------------------------------------------------------------------------------
 
-void BM_SmoothedAssemble(benchmark::State& state, const char* element) {
+void assembly_rate(benchmark::State& state, const char* element, AssemblyMode mode) {
   const int divisions = int(state.range(0)), threads = int(state.range(1));
   oneapi::tbb::global_control limit(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   SmoothedBenchRun& run = run_of(element, divisions);
   const bool smoothed = !run.edges.empty();
   Index inverted = 0;
   for (auto _ : state) {
-    inverted += run.assemble(AssemblyMode::residual_and_tangent).inverted_cells;
+    inverted += run.assemble(mode).inverted_cells;
     benchmark::DoNotOptimize(run.system.residual.data());
     benchmark::ClobberMemory();
   }
@@ -169,6 +171,10 @@ void BM_SmoothedAssemble(benchmark::State& state, const char* element) {
   state.counters["cell_colours"] = double(run.cells[0].n_colours());
 }
 
+void BM_SmoothedAssemble(benchmark::State& state, const char* element) { assembly_rate(state, element, AssemblyMode::residual_and_tangent); }
+// The residual alone: what a line search's trial point costs if it is assembled without the tangent.
+void BM_SmoothedResidual(benchmark::State& state, const char* element) { assembly_rate(state, element, AssemblyMode::residual); }
+
 // Divisions 16 .. 256 (the ctest smoke run filters /16/), threads 1 and 2.
 void assemble_sizes(benchmark::internal::Benchmark* b) {
   for (int n : {16, 32, 64, 128, 256})
@@ -178,6 +184,7 @@ void assemble_sizes(benchmark::internal::Benchmark* b) {
 
 BENCHMARK_CAPTURE(BM_SmoothedAssemble, es_up, "es_up")->Apply(assemble_sizes);
 BENCHMARK_CAPTURE(BM_SmoothedAssemble, p1p1_uphi, "p1p1_uphi")->Apply(assemble_sizes);
+BENCHMARK_CAPTURE(BM_SmoothedResidual, es_up, "es_up")->Apply(assemble_sizes);
 
 // ---- 2. Non-zeros per row --------------------------------------------------------------------------------
 

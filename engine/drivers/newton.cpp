@@ -41,6 +41,14 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     return p.assemble(tangent);
   };
 
+  // A trial point of the line search.
+  auto assemble_trial = [&]() {
+    if (!(s.line_search && s.trials_without_tangent) || s.tangent_once_per_step) return assemble();
+    ScopedTimer t(timers, "newton/assemble");
+    have_tangent = false;
+    return p.assemble(false);
+  };
+
   if (!assemble()) return fail("a cell is inverted at the start of the step");
   const double r0 = p.residual_norm();
   if (!std::isfinite(r0)) return fail("the initial residual is not finite");
@@ -99,7 +107,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
       ScopedTimer t(timers, "newton/update");
       p.update(step);
     }
-    bool admissible = assemble();
+    bool admissible = assemble_trial();
     double r_new = admissible ? p.residual_norm() : INFINITY;
     // Armijo on the residual norm; a trial that already converges is accepted (near convergence the
     // residual sits at round-off and need not decrease).
@@ -111,7 +119,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
           p.update(-0.5 * step);  // back to half the previous trial step
         }
         step *= 0.5;
-        admissible = assemble();
+        admissible = assemble_trial();
         r_new = admissible ? p.residual_norm() : INFINITY;
       }
       if (admissible && !acceptable()) return fail("the line search found no decrease of the residual");

@@ -33,6 +33,11 @@ struct NewtonSettings {
   // (a linear problem: one of its two assemblies per step). Only for problems whose residual-only
   // assembly gives the residual of the full one bit for bit, and that keep no state between assemblies.
   int expected_iterations = 0;
+  // With the line search, assemble its trial points for the residual alone; the tangent is assembled at the
+  // accepted point only if that has not converged (as the lazy tangent). The trials are then a fifth of a full
+  // assembly each for es_up (perf/bench_smoothed, BM_SmoothedResidual), and the iterates are the same bit for bit.
+  // Same conditions as the lazy tangent.
+  bool trials_without_tangent = false;
   std::ostream* log = nullptr;  // one line per iteration (residual, step length) when set
 };
 

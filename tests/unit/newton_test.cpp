@@ -322,4 +322,57 @@ TEST(SolveNewton, LazyTangentChangesNoIterateAndSkipsTheUnusedTangent) {
   }
 }
 
+
+TEST(SolveNewton, LineSearchTrialsWithoutTangentChangeNoIterate) {
+  // atan(x) = 0 from x = 2 backtracks in its first iterations: each trial point is assembled for its residual,
+  // the tangent only at the accepted point that has not converged.
+  struct Counting : ToyProblem {
+    using ToyProblem::ToyProblem;
+    int tangents = 0, assemblies = 0;
+    Eigen::VectorXd tangent_at;
+    bool assemble(bool with_tangent) override {
+      tangents += with_tangent, ++assemblies;
+      if (with_tangent) tangent_at = x;
+      return ToyProblem::assemble(with_tangent);
+    }
+    bool solve() override {
+      EXPECT_EQ(tangent_at, x) << "solved with a tangent of another iterate";
+      return ToyProblem::solve();
+    }
+  };
+  auto make = [] {
+    return Counting(vec({2.0}), [](const Eigen::VectorXd& x) { return vec({std::atan(x(0))}); },
+                    [](const Eigen::VectorXd& x) { return Eigen::MatrixXd::Constant(1, 1, 1.0 / (1.0 + x(0) * x(0))); });
+  };
+  Timers timers;
+  Counting eager = make();
+  const NewtonReport ref = solve_newton(eager, strict(true), timers);
+  ASSERT_TRUE(ref.converged) << ref.failure;
+  const int n = ref.iterations;
+  ASSERT_GT(eager.assemblies, n + 1) << "the line search did not backtrack: the test shows nothing";
+  EXPECT_EQ(eager.tangents, eager.assemblies);
+  Counting trial = make();
+  NewtonSettings s = strict(true);
+  s.trials_without_tangent = true;
+  const NewtonReport rep = solve_newton(trial, s, timers);
+  ASSERT_TRUE(rep.converged) << rep.failure;
+  EXPECT_EQ(rep.iterations, n);
+  EXPECT_EQ(rep.residuals, ref.residuals);
+  EXPECT_EQ(trial.x, eager.x);
+  EXPECT_EQ(trial.tangents, n);  // the start's and one per accepted, unconverged iterate
+  EXPECT_EQ(trial.assemblies, eager.assemblies + n - 1);
+  // Without the line search the setting does nothing.
+  Counting plain = make();
+  plain.x = plain.x_start = vec({0.5});
+  Counting plain_ref = make();
+  plain_ref.x = plain_ref.x_start = vec({0.5});
+  NewtonSettings off = strict(false);
+  const NewtonReport a = solve_newton(plain_ref, off, timers);
+  off.trials_without_tangent = true;
+  const NewtonReport b = solve_newton(plain, off, timers);
+  ASSERT_TRUE(a.converged && b.converged);
+  EXPECT_EQ(a.residuals, b.residuals);
+  EXPECT_EQ(plain.tangents, plain_ref.tangents);
+}
+
 }  // namespace loom
