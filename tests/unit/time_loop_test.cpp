@@ -1,0 +1,64 @@
+// The time loop's sub-steps (engine/drivers/time_loop.cpp): a step cut back to 1/64 of its size is completed by
+// 64 sub-steps whose summed times fall short of the step's end by round-off; that remainder must join the last
+// sub-step, not run as a step of its own (a step of 1e-13 s makes Bossak's inertia term 1e26 times the mass and
+// fails through every cut-back: a thin-collapse run failed so at t = 80.896 s, dt = 8e-3 s).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/drivers/time_loop.hpp"
+
+namespace loom {
+namespace {
+
+// A step graph whose Newton "converges" only on sub-steps no longer than `limit` (to a millionth) and not
+// shorter than a millionth of it; it records every sub-step's size.
+struct Fixture {
+  StepContext ctx;
+  Timers timers;
+  StepGraph graph{"test", ctx, timers};
+  StepStatus status;
+  std::vector<double> sizes;
+  double limit = 0.0;
+  int store = 0;
+  Fixture() {
+    graph.add_node("newton", {{}, {&store}}, [this] {
+      sizes.push_back(ctx.dt);
+      status.converged = ctx.dt <= limit * (1.0 + 1e-6) && ctx.dt >= 1e-6 * limit;
+      status.failure = status.converged ? "" : "a sub-step of " + std::to_string(ctx.dt) + " s";
+    });
+    graph.build();
+  }
+};
+
+TEST(TimeLoop, RoundOffLeftBySubStepsJoinsTheLastOne) {
+  const double dt = 8e-3;
+  int slivers = 0;
+  for (int k = 0; k < 200; ++k) {
+    Fixture f;
+    f.limit = dt / 64.0;
+    f.ctx.t = 80.888 + 0.0137 * k;  // off the step grid: the loop counts its steps from here, as on a restart
+    const double t_end = f.ctx.t + dt;
+    const TimeLoopResult r = run_time_loop(dt, 1, 6, f.ctx, f.graph, f.status, {}, {1, 0});
+    ASSERT_TRUE(r.completed) << "start " << 80.888 + 0.0137 * k << ": " << r.failure;
+    EXPECT_EQ(r.last_step_time, t_end);
+    EXPECT_EQ(f.status.total_cutbacks, 6);
+    for (double h : f.sizes) slivers += h < 1e-6 * f.limit;
+  }
+  EXPECT_EQ(slivers, 0);
+}
+
+TEST(TimeLoop, CutBackSubStepsCompleteTheStepAtItsEnd) {
+  Fixture f;
+  f.limit = 0.4;
+  const TimeLoopResult r = run_time_loop(1.0, 1, 2, f.ctx, f.graph, f.status, {}, {1, 0});
+  ASSERT_TRUE(r.completed) << r.failure;
+  EXPECT_EQ(r.last_step_time, 1.0);
+  // 1.0 fails, 0.5 fails, then 0.25 four times: the halving stays at the size that converged.
+  EXPECT_EQ(f.sizes, (std::vector<double>{1.0, 0.5, 0.25, 0.25, 0.25, 0.25}));
+}
+
+}  // namespace
+}  // namespace loom
