@@ -7,8 +7,9 @@
 # shallow-layer model has no inertia, so its history at mu = 3 is the one at mu = 10 at 10/3 the time, and its
 # arrested state does not depend on mu. The walls' penalty is E / h of the graded ground (8e7 instead of 100 E / h:
 # penetration about 5 micrometres, 0.4 % of the ground's spacing; fewer Newton iterations, docs/free_surface.md).
-# A step that fails through all its cut-backs is retried from the last checkpoint in steps of 8e-3 s (and the next
-# failure again in 1e-2 s), so that the remeshes fall at other states.
+# A step that fails through all its cut-backs is retried from the last checkpoint in steps of 8e-3 s (the next
+# failures in 6e-3, 5e-3 and again 1e-2 s), so that the remeshes fall at other states: two sizes alone can both fail
+# at their own steps after one checkpoint, and the retries then repeat the same two runs.
 # The first 10 s use the line search too (the scene's residual_relative = 1e-8): without it Newton cycles between
 # the yield kinks of the fine rows at the ground (25 iterations, residual stuck at 1e-3 to 1e-2 of the first) and
 # a step in two to four was cut back; over steps 2250-2750 of the run with a 15 mm ramp it takes 3 cut-backs against
@@ -53,13 +54,14 @@ if [ "$at" -lt 5000 ]; then
   [ "$at" -ge 0 ] && resume=(--restart "$out")
   "$loom" run "$scene" --out "$out" "${resume[@]}" --stop-after 5000 --set solver.line_search=true "${sets[@]}" || exit $?
 fi
-dts=(1e-2 8e-3)
+dts=(1e-2 8e-3 6e-3 5e-3)
+n=${#dts[@]}
 for attempt in $(seq 0 40); do
-  dt=${dts[$((attempt % 2))]}
+  dt=${dts[$((attempt % n))]}
   "$loom" run "$scene" --out "$out" --restart "$out" --set time.dt=$dt --stop-after $last \
     --set solver.line_search=true --set solver.residual_relative=1e-6 "${sets[@]}"
   rc=$?
   [ $rc -ne 1 ] && exit $rc  # 0: reached the step or settled; 2: bad input
-  echo "thin_collapse_long: retrying from the last checkpoint of $out in steps of ${dts[$(((attempt + 1) % 2))]} s" >&2
+  echo "thin_collapse_long: retrying from the last checkpoint of $out in steps of ${dts[$(((attempt + 1) % n))]} s" >&2
 done
 exit 1

@@ -3,7 +3,8 @@
 # hours): bad arguments exit 2 before any run; a fresh output directory runs the first 10 s (5000 steps, with the
 # line search) and then the long stage; one whose last checkpoint is below step 5000 continues the first stage from
 # it (--restart) rather than starting the long stage's steps of 1e-2 s at the wrong time; one at or past step 5000
-# goes straight to the long stage; a failed long stage (exit 1) is retried in steps of 8e-3 s. Usage: check_thin_collapse_long.sh
+# goes straight to the long stage; a failed long stage (exit 1) is retried in steps of 8e-3 s, then 6e-3 s.
+# Usage: check_thin_collapse_long.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 work=$(mktemp -d)
@@ -55,6 +56,11 @@ run "$work/late" 1 0
 [ "$rc" -eq 0 ] && [ "$(calls)" -eq 2 ] || fail "late: exit $rc, $(calls) runs (expected 0, 2)"
 call 1 | grep -q -- '--set time.dt=1e-2 ' || fail "late: the first run is not the long stage"
 call 2 | grep -q -- '--set time.dt=8e-3 ' || fail "late: the retry is not in steps of 8e-3 s"
+
+# Failures in two sizes go on to a third: the retries do not repeat the same two runs.
+run "$work/late" 1 1 0
+[ "$rc" -eq 0 ] && [ "$(calls)" -eq 3 ] || fail "late, two failures: exit $rc, $(calls) runs (expected 0, 3)"
+call 3 | grep -q -- '--set time.dt=6e-3 ' || fail "late: the second retry is not in steps of 6e-3 s"
 
 # Bad input from loom (exit 2) ends the script with it, in either stage.
 run "$work/fresh" 2
