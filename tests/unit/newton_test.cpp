@@ -75,6 +75,22 @@ NewtonSettings strict(bool line_search = false) {
   return s;
 }
 
+// Counts its assemblies and tangents, and checks that every solve uses the tangent of the iterate it solves at.
+struct Counting : ToyProblem {
+  using ToyProblem::ToyProblem;
+  int tangents = 0, assemblies = 0;
+  Eigen::VectorXd tangent_at;
+  bool assemble(bool with_tangent) override {
+    tangents += with_tangent, ++assemblies;
+    if (with_tangent) tangent_at = x;
+    return ToyProblem::assemble(with_tangent);
+  }
+  bool solve() override {
+    EXPECT_EQ(tangent_at, x) << "solved with a tangent of another iterate";
+    return ToyProblem::solve();
+  }
+};
+
 }  // namespace
 
 TEST(SolveNewton, ConvergesQuadraticallyOnASmoothSystem) {
@@ -273,20 +289,6 @@ TEST(SolveNewton, TangentOncePerStepAssemblesItOnce) {
 // whatever the expectation, with one tangent fewer when the expectation is met, one residual-only
 // assembly more when it is not, and the tangent always at the iterate that is solved with.
 TEST(SolveNewton, LazyTangentChangesNoIterateAndSkipsTheUnusedTangent) {
-  struct Counting : ToyProblem {
-    using ToyProblem::ToyProblem;
-    int tangents = 0, assemblies = 0;
-    Eigen::VectorXd tangent_at;
-    bool assemble(bool with_tangent) override {
-      tangents += with_tangent, ++assemblies;
-      if (with_tangent) tangent_at = x;
-      return ToyProblem::assemble(with_tangent);
-    }
-    bool solve() override {
-      EXPECT_EQ(tangent_at, x) << "solved with a tangent of another iterate";
-      return ToyProblem::solve();
-    }
-  };
   auto make = [] {
     return Counting(vec({0.5, -0.3}), [](const Eigen::VectorXd& x) { return vec({std::atan(x(0)) + 0.1 * x(1), x(1) * x(1) * x(1) + x(1) - 0.2}); },
                     [](const Eigen::VectorXd& x) {
@@ -322,24 +324,9 @@ TEST(SolveNewton, LazyTangentChangesNoIterateAndSkipsTheUnusedTangent) {
   }
 }
 
-
 TEST(SolveNewton, LineSearchTrialsWithoutTangentChangeNoIterate) {
   // atan(x) = 0 from x = 2 backtracks in its first iterations: each trial point is assembled for its residual,
   // the tangent only at the accepted point that has not converged.
-  struct Counting : ToyProblem {
-    using ToyProblem::ToyProblem;
-    int tangents = 0, assemblies = 0;
-    Eigen::VectorXd tangent_at;
-    bool assemble(bool with_tangent) override {
-      tangents += with_tangent, ++assemblies;
-      if (with_tangent) tangent_at = x;
-      return ToyProblem::assemble(with_tangent);
-    }
-    bool solve() override {
-      EXPECT_EQ(tangent_at, x) << "solved with a tangent of another iterate";
-      return ToyProblem::solve();
-    }
-  };
   auto make = [] {
     return Counting(vec({2.0}), [](const Eigen::VectorXd& x) { return vec({std::atan(x(0))}); },
                     [](const Eigen::VectorXd& x) { return Eigen::MatrixXd::Constant(1, 1, 1.0 / (1.0 + x(0) * x(0))); });
