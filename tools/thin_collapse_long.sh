@@ -20,16 +20,21 @@
 # that the penetration stays the same fraction of the ground's spacing (the held strip below the first row is first
 # order in that row's height: docs/free_surface.md). SPACING_RAMP (m, default 0: one body spacing, 5 mm) is the distance
 # over which the ground's spacing grows to the body's; over one body spacing the first row stays about 4.7 times the
-# ground's spacing at 1.25 mm (wall[].spacing_ramp in the README).
+# ground's spacing at 1.25 mm (wall[].spacing_ramp in the README). DIVISIONS (default 10: the scene's h = 5 mm) is the
+# body mesh's n, divisions [n, 2n] of the 0.05 m x 0.1 m half-column (h = 50 mm / n); the ground's spacing and ramp
+# are lengths and stay as given.
 #   tools/thin_collapse_long.sh OUT [until_seconds=150] [loom=build/loom] [ground_spacing=1.25e-3] [spacing_ramp=0]
+#                               [divisions=10]
 set -u
-usage="usage: tools/thin_collapse_long.sh OUT [until_seconds] [loom] [ground_spacing] [spacing_ramp]"
+usage="usage: tools/thin_collapse_long.sh OUT [until_seconds] [loom] [ground_spacing] [spacing_ramp] [divisions]"
 out=${1:?$usage}
 until=${2:-150}
 loom=${3:-build/loom}
 ground=${4:-0.00125}
 ramp=${5:-0}
+divisions=${6:-10}
 [[ $until =~ ^[0-9]+$ ]] && [ "$until" -gt 10 ] || { echo "tools/thin_collapse_long.sh: until_seconds must be a whole number above 10, not '$until'" >&2; exit 2; }
+[[ $divisions =~ ^[0-9]+$ ]] && [ "$divisions" -ge 2 ] || { echo "tools/thin_collapse_long.sh: divisions must be a whole number of at least 2, not '$divisions'" >&2; exit 2; }
 # E = 1e5 Pa (the scene's paste): the penalty E / h, 8e7 at the default 1.25 mm.
 penalty=$(awk -v h="$ground" 'BEGIN { if (h + 0 <= 0 || h + 0 > 0.005) exit 1; printf "%.6g", 1e5 / h }') ||
   { echo "tools/thin_collapse_long.sh: ground_spacing must be a length in metres in (0, 0.005], not '$ground'" >&2; exit 2; }
@@ -40,6 +45,7 @@ sets=(--set 'material[0].tau0=5.0' --set 'material[0].viscosity=3.0' --set "wall
       --set output.checkpoint_every=250 --set output.every=2500 --threads 1 --quiet)
 # The scene's own ramp unless one is asked for: a run without it stays the run it was.
 [ "$ramp" != 0 ] && sets+=(--set "wall[0].spacing_ramp=$ramp")
+[ "$divisions" != 10 ] && sets+=(--set "body[0].mesh.divisions=[$divisions,$((2 * divisions))]")
 # Steps of the long stage: from step 5000 at 10 s, 100 per second.
 last=$((5000 + (until - 10) * 100))
 # The step of the last checkpoint (none: -1): below 5000 the first stage is not done.

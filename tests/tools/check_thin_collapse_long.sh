@@ -3,7 +3,8 @@
 # hours): bad arguments exit 2 before any run; a fresh output directory runs the first 10 s (5000 steps, with the
 # line search) and then the long stage; one whose last checkpoint is below step 5000 continues the first stage from
 # it (--restart) rather than starting the long stage's steps of 1e-2 s at the wrong time; one at or past step 5000
-# goes straight to the long stage; a failed long stage (exit 1) is retried in steps of 8e-3 s, then 6e-3 s.
+# goes straight to the long stage; a failed long stage (exit 1) is retried in steps of 8e-3 s, then 6e-3 s; a finer
+# body mesh (the sixth argument) reaches both stages.
 # Usage: check_thin_collapse_long.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -35,6 +36,8 @@ for bad in "5" "ten"; do
 done
 rc=0; tools/thin_collapse_long.sh "$work/x" 150 "$work/loom" 0.01 > "$work/log" 2>&1 || rc=$?
 [ "$rc" -eq 2 ] && [ "$(calls)" -eq 0 ] || fail "ground_spacing 0.01: exit $rc, $(calls) runs (expected 2, none)"
+rc=0; tools/thin_collapse_long.sh "$work/x" 150 "$work/loom" 0.00125 0 1 > "$work/log" 2>&1 || rc=$?
+[ "$rc" -eq 2 ] && [ "$(calls)" -eq 0 ] || fail "divisions 1: exit $rc, $(calls) runs (expected 2, none)"
 
 # Fresh: the first stage from the scene (no --restart), then the long stage to step 5000 + 140 * 100.
 mkdir -p "$work/fresh"
@@ -43,6 +46,17 @@ run "$work/fresh" 0 0
 call 1 | grep -q -- '--stop-after 5000 --set solver.line_search=true' || fail "fresh: the first run is not the first stage"
 call 1 | grep -q -- '--restart' && fail "fresh: the first stage restarts"
 call 2 | grep -q -- "--restart $work/fresh --set time.dt=1e-2 --stop-after 19000" || fail "fresh: the second run is not the long stage"
+call 1 | grep -q -- 'body\[0\].mesh' && fail "fresh: the scene's body mesh is overridden by default"
+
+# A finer body mesh: divisions [n, 2n] in both stages.
+rm -rf "$work/fine" && mkdir -p "$work/fine"
+rm -f "$work/calls.txt"; printf '0\n0\n' > "$work/stub_rc"
+rc=0; tools/thin_collapse_long.sh "$work/fine" 150 "$work/loom" 0.00125 0.015 15 > "$work/log" 2>&1 || rc=$?
+[ "$rc" -eq 0 ] && [ "$(calls)" -eq 2 ] || fail "fine: exit $rc, $(calls) runs (expected 0, 2)"
+for i in 1 2; do
+  call $i | grep -q -- '--set body\[0\].mesh.divisions=\[15,30\]' || fail "fine: run $i is not on divisions [15, 30]"
+  call $i | grep -q -- '--set wall\[0\].spacing_ramp=0.015' || fail "fine: run $i has not the 15 mm ramp"
+done
 
 # Interrupted in the first stage: it is continued from its checkpoint, then the long stage.
 mkdir -p "$work/early" && touch "$work/early/checkpoint_000250.loom" "$work/early/checkpoint_002842.loom"
