@@ -20,7 +20,9 @@ from, and by how much:
 
 The stresses along the centre section and the base come from the frame's cell stresses, sampled on lines a quarter
 of a cell inside the body. It also prints the arrested half-width of the balance with the plug at yield in
-extension over the whole depth (docs/free_surface.md): rho g h^2 / 2 - 2 tau0 h = tau0 (L - x).
+extension over the whole depth (docs/free_surface.md): rho g h^2 / 2 - 2 tau0 h = tau0 (L - x), and the front
+scaled to the half-area given, x_f (A / A_run)^(2/3) with A_run the run's area probe (half-widths go as A^(2/3)):
+the front without the area the run gained (the u-p element's dilation) or lost, to compare runs on other meshes.
 
 With --profile FILE it writes the same split section by section along the deposit (x, top, thrust of the cell
 stresses, lithostatic thrusts for rho and rho / J, the weight and sigma_yy at the base, the extension term, and the
@@ -106,7 +108,7 @@ def section(mesh, x, hc, rho, g, n=400):
         "litho_current": np.trapz(W, y),
         "vertical": np.trapz(W + s[:, 1, 1], y),
         "extension": np.trapz(s[:, 0, 0] - s[:, 1, 1], y),
-        "weight": W[0], "base_syy": -s[0, 1, 1],
+        "weight": W[0], "base_syy": -s[0, 1, 1], "W": W,
         "upper_extension": np.mean(((s[:, 0, 0] - s[:, 1, 1]))[y > top / 2]),
     }
 
@@ -191,6 +193,18 @@ def extension_corrected_half_width(tau0, rho, g, area):
     return lo, held(lo)[1]
 
 
+def print_area_scaled(xf, probes, area, L0, L1):
+    """The front scaled to the half-area asked for, x_f (A / A_run)^(2/3) with A_run the probe `area` of the same
+    step: an arrested shallow deposit's half-width goes as A^(2/3) (L_f above), so this is the front the deposit
+    would have without the area it gained or lost (the u-p element's dilation under shear, the paste's elastic
+    compression, a removal's loss), to compare runs whose areas differ."""
+    if "area" not in probes or not probes["area"] > 0.0:
+        return
+    scaled = xf * (area / probes["area"]) ** (2.0 / 3.0)
+    print(f"  scaled to the area: the run's half-area {probes['area']:.6g} m^2 ({100 * (probes['area'] / area - 1):+.2f} %), "
+          f"x_f (A / A_run)^(2/3) = {scaled:.4f} m ({100 * (scaled / L0 - 1):+.1f} %, {100 * (scaled / L1 - 1):+.1f} %)")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
@@ -216,6 +230,7 @@ def main():
             L1, h1 = extension_corrected_half_width(tau0, rho, g, a.area)
             print(f"half-width: shallow {L0:.4f} m, extension-corrected {L1:.4f} m; computed {xf:.4f} m "
                   f"({100 * (xf / L0 - 1):+.1f} %, {100 * (xf / L1 - 1):+.1f} %)")
+            print_area_scaled(xf, p, a.area, L0, L1)
         return
     x = vtk_to_numpy(mesh.GetPoints().GetData())[:, :2]
     hc, xf = x[:, 1].max(), x[:, 0].max()
@@ -277,13 +292,14 @@ def main():
         L1, h1 = extension_corrected_half_width(tau0, rho, g, a.area)
         print(f"half-width: shallow {L0:.4f} m (h_c {1e3 * math.sqrt(2 * tau0 * L0 / k):.2f} mm), with the plug at yield in "
               f"extension {L1:.4f} m (h_c {1e3 * h1:.2f} mm); computed {xf:.4f} m ({100 * (xf / L0 - 1):+.1f} %, {100 * (xf / L1 - 1):+.1f} %)")
+        print_area_scaled(xf, p, a.area, L0, L1)
     if a.profile:
         write_profile(a.profile, mesh, xf, hc, cell, bpts[:, 0], base_shear, rho, g)
     if a.csv:
         with open(a.csv, "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["y", "sigma_xx", "sigma_yy", "sigma_xy", "lithostatic", "extension_over_2tau0"])
-            for yi, si, li in zip(y, s, litho):
+            for yi, si, li in zip(y, s, c["W"]):
                 w.writerow([f"{yi:.6g}", f"{si[0, 0]:.6g}", f"{si[1, 1]:.6g}", f"{si[0, 1]:.6g}", f"{-li:.6g}",
                             f"{(si[0, 0] - si[1, 1]) / (2 * tau0):.6g}"])
 

@@ -28,10 +28,34 @@ grep -q '^step 1;newton;iteration 1;solve;factorize [0-9]*$' "$out/folded" \
 # the column with a yield stress it cannot exceed, settled by Bossak's damping: 6e-5 apart after 6 s).
 "$loom" run scenes/bingham_collapse_es.toml --out "$out/collapse" --quiet --set 'material[0].tau0=1e4' --set time.dt=0.05 \
   --set time.steps=120 --set output.every=120
-tools/arrest_balance.py "$out/collapse" --tau0 1e4 --area 0.005 > "$out/balance" || { echo "arrest_balance failed"; exit 1; }
+tools/arrest_balance.py "$out/collapse" --tau0 1e4 --area 0.005 --csv "$out/section.csv" > "$out/balance" \
+  || { echo "arrest_balance failed"; exit 1; }
 k=$(sed -n 's/.*k_N = \([0-9.e+]*\) N\/m^3.*/\1/p' "$out/balance")
 python3 -c "import sys; sys.exit(0 if abs(float('$k') / 2e9 - 1) < 1e-3 else 1)" \
   || { echo "arrest_balance: k_N = $k, expected 2e9"; cat "$out/balance"; exit 1; }
+# The centre section's CSV holds the section the budget integrates: its columns give back the printed section
+# thrust (- int sigma_xx dy) and vertical term (int (W + sigma_yy) dy, W the weight above: "lithostatic" is -W).
+python3 - "$out/section.csv" "$out/balance" <<'PY' || { echo "arrest_balance --csv: not the budget's section"; head "$out/section.csv"; cat "$out/balance"; exit 1; }
+import csv, re, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+text = open(sys.argv[2]).read()
+y, sxx, syy, lith = ([float(r[k]) for r in rows] for k in ("y", "sigma_xx", "sigma_yy", "lithostatic"))
+trapz = lambda f: sum(0.5 * (f[i] + f[i + 1]) * (y[i + 1] - y[i]) for i in range(len(y) - 1))
+thrust = float(re.search(r"section of cell stresses: ([-0-9.]+) N/m", text).group(1))
+vertical = float(re.search(r"vertical +([-+0-9.]+) N/m", text).group(1))
+ok = len(rows) > 100 and abs(trapz([-v for v in sxx]) - thrust) < 2e-4 and abs(trapz([a - b for a, b in zip(syy, lith)]) - vertical) < 2e-4
+sys.exit(0 if ok else 1)
+PY
+# The front scaled to the area asked for, x_f (0.005 / A_run)^(2/3), A_run the last row's area probe.
+python3 - "$out/balance" "$out/collapse/probes.csv" <<'PY' || { echo "arrest_balance: wrong front scaled to the area"; cat "$out/balance"; exit 1; }
+import csv, re, sys
+text = open(sys.argv[1]).read()
+row = list(csv.DictReader(open(sys.argv[2])))[-1]
+xf = float(re.search(r"computed ([0-9.]+) m", text).group(1))
+scaled = float(re.search(r"x_f \(A / A_run\)\^\(2/3\) = ([0-9.]+) m", text).group(1))
+expected = xf * (0.005 / float(row["area"])) ** (2 / 3)
+sys.exit(0 if abs(scaled - expected) < 1e-4 and abs(float(row["area"]) / 0.005 - 1) > 1e-4 else 1)
+PY
 # tools/first_row.py on the same resting column, its mesh's rows h = 5 mm apart: 11 particles on the ground and the
 # first row 5 mm above every one of them, less the column's own elastic shortening under its weight (rho g H / E
 # = 2.3 % at the base: 4.90 mm).
