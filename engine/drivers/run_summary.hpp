@@ -23,6 +23,9 @@ struct RunSummary {
   double wall_seconds = 0.0;
   std::string failure;              // empty when converged
   std::string linear_solver;        // back-end in use at the end
+  // Numeric factorisations of this process (not those before a restart) and, with solver.reuse_factor, the
+  // linear solves done by GMRES on a kept factorisation and their GMRES iterations.
+  long long factorizations = 0, reused_solves = 0, gmres_iterations = 0;
   long long dofs = 0, cells = 0;
   int threads = 0;
 };

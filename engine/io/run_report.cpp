@@ -53,6 +53,9 @@ std::string run_json(const RunIdentity& id, const RunSummary& s) {
      << "  \"newton_iterations\": " << s.newton_iterations << ",\n"
      << "  \"cutbacks\": " << s.cutbacks << ",\n"
      << "  \"linear_solver\": \"" << json_escape(s.linear_solver) << "\",\n"
+     << "  \"factorizations\": " << s.factorizations << ",\n"
+     << "  \"reused_solves\": " << s.reused_solves << ",\n"
+     << "  \"gmres_iterations\": " << s.gmres_iterations << ",\n"
      << "  \"wall_seconds\": " << s.wall_seconds << ",\n"
      << "  \"failure\": \"" << json_escape(s.failure) << "\"\n"
      << "}\n";

@@ -5,6 +5,7 @@
 
 #include "engine/linalg/bisected_cholesky.hpp"
 #include "engine/linalg/cholmod_lower.hpp"
+#include "engine/linalg/factor_preconditioned_gmres.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -199,7 +200,8 @@ std::unique_ptr<LinearSolver> make_cg_solver(double tolerance) { return std::mak
 std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodSolver>(); }
 std::unique_ptr<LinearSolver> make_umfpack_solver(double wide_above) { return std::make_unique<UmfpackSolver>(wide_above); }
 
-LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance) : kind_(kind), cg_tolerance_(cg_tolerance) {
+LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance, bool reuse_factor)
+    : kind_(kind), cg_tolerance_(cg_tolerance), reuse_factor_(reuse_factor && kind != LinearSolverKind::cg) {
   solver_ = kind == LinearSolverKind::umfpack            ? make_umfpack_solver()
             : kind == LinearSolverKind::cg                 ? make_cg_solver(cg_tolerance)
             : kind == LinearSolverKind::cholmod_bisected   ? make_bisected_cholmod_solver()
@@ -212,15 +214,28 @@ bool LinearSolve::analyze(const SparsePattern& pattern) {
   if (analysed_version_ == pattern.version) return false;
   solver_->analyze(pattern.matrix);
   analysed_version_ = pattern.version;
+  have_factor_ = false;
   ++analyses_;
   return true;
 }
 
 bool LinearSolve::factorize(const SparsePattern& pattern) {
+  pending_ = nullptr;
+  if (reuse_factor_ && have_factor_ && !refactor_next_ && analysed_version_ == pattern.version) {
+    pending_ = &pattern;
+    return true;
+  }
+  return factorize_now(pattern);
+}
+
+bool LinearSolve::factorize_now(const SparsePattern& pattern) {
+  refactor_next_ = false;
+  have_factor_ = false;
   for (;;) {
     analyze(pattern);
     ++factorizations_;
     if (solver_->factorize(pattern.matrix)) {
+      have_factor_ = true;
       if (!solver_->estimates_condition()) return true;
       const double rcond = solver_->rcond();
       min_rcond_ = std::min(min_rcond_, std::isfinite(rcond) ? rcond : 0.0);
@@ -244,6 +259,19 @@ bool LinearSolve::factorize(const SparsePattern& pattern) {
 }
 
 bool LinearSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (pending_) {
+    const SparsePattern& pattern = *pending_;
+    pending_ = nullptr;
+    ++reused_solves_;
+    const GmresOutcome gmres = factor_preconditioned_gmres(pattern.matrix, *solver_, b, x, cg_tolerance_, kReuseIterations);
+    gmres_iterations_ += gmres.iterations;
+    if (gmres.converged) {
+      refactor_next_ = gmres.iterations > kRefactorAbove;
+      return true;
+    }
+    ++reuse_fallbacks_;
+    if (!factorize_now(pattern)) return false;
+  }
   if (solver_->solve(b, x)) return true;
   failure_ = std::string(solver_->name()) == "cg"
                  ? "conjugate gradients did not reach solver.linear_tolerance within twice as many iterations as unknowns (the tangent "
@@ -261,6 +289,7 @@ void LinearSolve::use_backend(const std::string& name) {
             : name == "cholmod_bisected" ? make_bisected_cholmod_solver()
                                          : make_cholmod_solver();
   analysed_version_ = 0;
+  have_factor_ = false;
 }
 
 }  // namespace loom

@@ -73,10 +73,20 @@ inline constexpr double kDefaultCgTolerance = 1e-10;
 // The solver a run uses: picks the back-end, redoes the symbolic analysis only when the pattern
 // changes, and with `automatic` switches from CHOLMOD to UMFPACK for good the first time a matrix is
 // not positive definite.
+//
+// With reuse_factor (solver.reuse_factor), a factorize() of a matrix whose pattern has a factorisation already
+// (an earlier Newton iteration's or step's tangent) keeps that factorisation, and the next solve() runs GMRES on the
+// new matrix preconditioned by it (from the left), to |M^-1 (A x - b)| <= tolerance |M^-1 b| (the cg tolerance; M the
+// kept factorisation, so this bounds the relative error of x). Only when GMRES does not get
+// there in kReuseIterations is the matrix factorised afresh and solved directly; after a GMRES solve that needed more
+// than kRefactorAbove iterations the next factorize() factorises. The iterates then differ from the fresh
+// factorisation's by the tolerance, not by round-off.
 class LinearSolve {
  public:
-  // cg_tolerance: the relative residual each solve of kind cg reaches (unused by the direct back-ends).
-  explicit LinearSolve(LinearSolverKind kind, double cg_tolerance = kDefaultCgTolerance);
+  static constexpr int kReuseIterations = 20, kRefactorAbove = 8;
+  // cg_tolerance: the relative residual each solve of kind cg, or each GMRES solve with reuse_factor, reaches
+  // (unused by the direct back-ends otherwise).
+  explicit LinearSolve(LinearSolverKind kind, double cg_tolerance = kDefaultCgTolerance, bool reuse_factor = false);
   ~LinearSolve();
   // The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) of pattern.matrix, if its
   // pattern is not the one analysed last; true if it ran.
@@ -100,10 +110,23 @@ class LinearSolve {
   double min_rcond() const { return min_rcond_; }
   void reset_condition() { min_rcond_ = INFINITY; }
   int factorizations() const { return factorizations_; }
+  // reuse_factor: the solves done by GMRES on a kept factorisation, their iterations, and the GMRES solves that
+  // failed and were factorised afresh.
+  int reused_solves() const { return reused_solves_; }
+  int gmres_iterations() const { return gmres_iterations_; }
+  int reuse_fallbacks() const { return reuse_fallbacks_; }
 
  private:
+  bool factorize_now(const SparsePattern& pattern);
+  bool factorize_matrix(const SparseMatrix& A);
+
   LinearSolverKind kind_;
   double cg_tolerance_;
+  bool reuse_factor_;
+  bool have_factor_ = false;     // solver_ holds a factorisation of a matrix of the analysed pattern
+  bool refactor_next_ = false;   // the last GMRES solve was slow: factorise at the next factorize()
+  const SparsePattern* pending_ = nullptr;  // reuse_factor: the system the next solve() solves by GMRES
+  int reused_solves_ = 0, gmres_iterations_ = 0, reuse_fallbacks_ = 0;
   std::unique_ptr<LinearSolver> solver_;
   std::uint64_t analysed_version_ = 0;
   double min_rcond_ = INFINITY;

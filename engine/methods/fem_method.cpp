@@ -26,7 +26,7 @@ namespace loom {
 
 template <int D>
 FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
-    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance, m_.scene.solver.reuse_factor) {
   ctx_.scene = &scene_;
   resolve_probe_groups();
   check_model();
@@ -375,6 +375,8 @@ RunSummary FemRunT<D>::run() {
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summarise_run(result, status_, schedule, summary);
   summary.linear_solver = solver_.backend();
+  summary.factorizations = solver_.factorizations(), summary.reused_solves = solver_.reused_solves();
+  summary.gmres_iterations = solver_.gmres_iterations();
   wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.wall_seconds = wall_;
   return summary;

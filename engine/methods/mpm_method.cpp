@@ -31,7 +31,7 @@
 namespace loom {
 template <int D>
 MpmRunT<D>::MpmRunT(const SceneSpec& scene, const RunOptions& options)
-    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance, m_.scene.solver.reuse_factor) {
   ctx_.scene = &scene_;
   if (options_.profile) timers_.enable_profile();
   // A static model must hold the active grid's rigid motions; a point probe must start in the body. (3D: as the 3D
@@ -365,6 +365,8 @@ RunSummary MpmRunT<D>::run() {
   summary.dofs = m_.system.dofs.n_free;
   summarise_run(result, status_, schedule, summary);
   summary.linear_solver = solver_.backend();
+  summary.factorizations = solver_.factorizations(), summary.reused_solves = solver_.reused_solves();
+  summary.gmres_iterations = solver_.gmres_iterations();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

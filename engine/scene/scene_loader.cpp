@@ -173,6 +173,11 @@ class Loader {
     s.solver.linear_tolerance = t.real("linear_tolerance");
     s.solver.tangent = pick<TangentUpdate>(t.string("tangent"), {{"every_iteration", TangentUpdate::every_iteration},
                                                                  {"once_per_step", TangentUpdate::once_per_step}});
+    s.solver.reuse_factor = t.boolean("reuse_factor");
+    if (s.solver.reuse_factor && s.solver.linear == LinearSolverKind::cg)
+      t.error("reuse_factor", "solver.linear = \"cg\" has no factorisation to reuse; use a direct back-end or reuse_factor = false");
+    if (s.solver.reuse_factor && s.solver.tangent == TangentUpdate::once_per_step)
+      t.error("reuse_factor", "tangent = \"once_per_step\" reuses the step's first factorisation already; choose one of the two");
   }
 
   void read_material(SceneSpec& s, const TableReader& t) {

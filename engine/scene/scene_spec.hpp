@@ -83,8 +83,9 @@ struct SolverSpec {
   int max_cutbacks = 4;
   LinearSolverKind linear = LinearSolverKind::automatic;
   SourceRef linear_where;  // of solver.linear (or of [solver], or the file)
-  double linear_tolerance = kDefaultCgTolerance;  // cg: relative residual of each linear solve
+  double linear_tolerance = kDefaultCgTolerance;  // cg, and GMRES with reuse_factor: relative residual of each linear solve
   TangentUpdate tangent = TangentUpdate::every_iteration;
+  bool reuse_factor = false;  // GMRES preconditioned by the last factorisation of the pattern (LinearSolve)
 };
 
 // Elastic constants are kept in both forms; the loader derives the missing pair.

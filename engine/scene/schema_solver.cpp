@@ -18,13 +18,21 @@ void add_solver_keys(std::vector<KeySpec>& s) {
                   "joined by the separator's Schur complement: uses two cores on large 2D systems; perf/compare/README.md).")
                   .one_of({"auto", "cholmod", "umfpack", "cg", "cholmod_bisected"}).by_default("auto"));
   s.push_back(key("solver.linear_tolerance", K::real,
-                  "cg only: each linear solve stops at |K du + r| <= linear_tolerance |r|. Newton then converges as with a direct "
-                  "solver while linear_tolerance is well below solver.residual_relative.")
+                  "cg: each linear solve stops at |K du + r| <= linear_tolerance |r|; reuse_factor: each GMRES solve stops at "
+                  "|M^-1 (K du + r)| <= linear_tolerance |M^-1 r|, M the kept factorisation (the increment's relative error). Newton "
+                  "then converges as with a direct solver while linear_tolerance is well below solver.residual_relative.")
                   .by_default("1e-10").above(0).below(1));
   s.push_back(key("solver.tangent", K::choice,
                   "every_iteration: full Newton; once_per_step: the tangent of the step's first iteration is factorised once and reused "
                   "(modified Newton, [Reinold 2021] §3.6; methods fem and pfem).")
                   .one_of({"every_iteration", "once_per_step"}).by_default("every_iteration"));
+  s.push_back(key("solver.reuse_factor", K::boolean,
+                  "Keep the factorisation of the tangent while the sparsity pattern is unchanged (across Newton iterations and "
+                  "steps) and solve each new tangent by GMRES preconditioned with it, to solver.linear_tolerance; factorise afresh when "
+                  "GMRES needs more than 8 iterations, or fails in 20. Newton stays exact (unlike once_per_step); the iterates differ "
+                  "from a fresh factorisation's by linear_tolerance, so a restarted run is not the same bit for bit. For direct "
+                  "back-ends: pays where factorising dominates a step (es_pfem at 10^3 to 10^4 dofs; perf/README.md).")
+                  .by_default("false"));
 }
 
 }  // namespace loom

@@ -1,0 +1,128 @@
+// solver.reuse_factor (engine/linalg/linear_solver.hpp, factor_preconditioned_gmres.cpp): a new matrix of an
+// analysed pattern is solved by GMRES preconditioned with the kept factorisation, to the tolerance on the solution's
+// relative error; a matrix too far from the factorised one is factorised afresh and solved directly; a slow GMRES solve
+// makes the next factorize() factorise; a new pattern is always factorised; the solve is that of a fresh
+// factorisation within the tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "engine/linalg/linear_solver.hpp"
+
+namespace loom {
+namespace {
+
+constexpr int kN = 200;
+
+// The unsymmetric tridiagonal matrix diag(d + shift * i / n), sub -1, super -1 - skew: a 1D convection-diffusion operator.
+SparsePattern convection_diffusion(double d, double shift, double skew, std::uint64_t version) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < kN; ++i) {
+    t.emplace_back(i, i, d + shift * i / kN);
+    if (i + 1 < kN) t.emplace_back(i, i + 1, -1.0 - skew), t.emplace_back(i + 1, i, -1.0);
+  }
+  SparsePattern p;
+  p.matrix.resize(kN, kN);
+  p.matrix.setFromTriplets(t.begin(), t.end());
+  p.matrix.makeCompressed();
+  p.version = version;
+  return p;
+}
+
+Eigen::VectorXd rhs() {
+  Eigen::VectorXd b(kN);
+  for (int i = 0; i < kN; ++i) b[i] = std::sin(0.05 * i) + 0.3;
+  return b;
+}
+
+double relative_residual(const SparsePattern& p, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  return (p.matrix * x - b).norm() / b.norm();
+}
+
+}  // namespace
+
+TEST(FactorReuse, ANearbyMatrixIsSolvedByGmresOnTheKeptFactorisation) {
+  for (auto kind : {LinearSolverKind::umfpack, LinearSolverKind::cholmod}) {
+    const double tolerance = 1e-10;
+    LinearSolve s(kind, tolerance, true);
+    const Eigen::VectorXd b = rhs();
+    Eigen::VectorXd x;
+    SparsePattern p = convection_diffusion(2.5, 0.0, 0.0, 1);
+    ASSERT_TRUE(s.factorize(p) && s.solve(b, x));
+    EXPECT_LT(relative_residual(p, x, b), 1e-14);
+    EXPECT_EQ(s.factorizations(), 1);
+    // The next iterate's tangent: 1 % off, and (for UMFPACK) unsymmetric. CHOLMOD's factor preconditions a
+    // symmetric change.
+    const double skew = kind == LinearSolverKind::umfpack ? 0.01 : 0.0;
+    const SparsePattern q = convection_diffusion(2.5, 0.02, skew, 1);
+    ASSERT_TRUE(s.factorize(q) && s.solve(b, x)) << s.backend();
+    EXPECT_EQ(s.factorizations(), 1) << s.backend();
+    EXPECT_EQ(s.reused_solves(), 1);
+    EXPECT_GT(s.gmres_iterations(), 0);
+    EXPECT_LE(s.gmres_iterations(), LinearSolve::kRefactorAbove);
+    EXPECT_EQ(s.reuse_fallbacks(), 0);
+    // The answer of a fresh factorisation to the tolerance (GMRES's test bounds the relative error of x), and the
+    // residual to the tolerance times the condition (below 10 here).
+    LinearSolve fresh(kind);
+    Eigen::VectorXd y;
+    ASSERT_TRUE(fresh.factorize(q) && fresh.solve(b, y));
+    EXPECT_LE((x - y).norm(), 2 * tolerance * y.norm());
+    EXPECT_LE(relative_residual(q, x, b), 10 * tolerance);
+  }
+}
+
+TEST(FactorReuse, AFarMatrixIsFactorisedAfreshAndSolvedDirectly) {
+  LinearSolve s(LinearSolverKind::umfpack, 1e-10, true);
+  const Eigen::VectorXd b = rhs();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(s.factorize(convection_diffusion(2.5, 0.0, 0.0, 1)) && s.solve(b, x));
+  // Diagonal 2.5 -> 2.02: the preconditioned spectrum spans 0.04 to 0.9 (condition ~22, ~50 GMRES iterations to 1e-10,
+  // not 20), while the matrix itself stays well conditioned (eigenvalues 0.02 to 4.02).
+  const SparsePattern q = convection_diffusion(2.02, 0.0, 0.0, 1);
+  ASSERT_TRUE(s.factorize(q) && s.solve(b, x));
+  EXPECT_EQ(s.reuse_fallbacks(), 1);
+  EXPECT_EQ(s.factorizations(), 2);
+  EXPECT_LT(relative_residual(q, x, b), 1e-13);  // solved directly
+}
+
+TEST(FactorReuse, ASlowGmresSolveMakesTheNextFactorizeFactorise) {
+  LinearSolve s(LinearSolverKind::umfpack, 1e-10, true);
+  const Eigen::VectorXd b = rhs();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(s.factorize(convection_diffusion(2.5, 0.0, 0.0, 1)) && s.solve(b, x));
+  const SparsePattern q = convection_diffusion(2.5, 0.6, 0.0, 1);  // far enough for more than 8 iterations, not 20
+  ASSERT_TRUE(s.factorize(q) && s.solve(b, x));
+  ASSERT_EQ(s.reuse_fallbacks(), 0);
+  ASSERT_GT(s.gmres_iterations(), LinearSolve::kRefactorAbove);
+  EXPECT_LE(relative_residual(q, x, b), 1e-9);
+  ASSERT_TRUE(s.factorize(q) && s.solve(b, x));
+  EXPECT_EQ(s.factorizations(), 2);  // the slow solve's matrix, factorised
+  EXPECT_EQ(s.reused_solves(), 1);
+  EXPECT_LT(relative_residual(q, x, b), 1e-13);
+}
+
+TEST(FactorReuse, ANewPatternIsAlwaysFactorised) {
+  LinearSolve s(LinearSolverKind::umfpack, 1e-10, true);
+  const Eigen::VectorXd b = rhs();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(s.factorize(convection_diffusion(2.5, 0.0, 0.0, 1)) && s.solve(b, x));
+  const SparsePattern q = convection_diffusion(2.5, 0.02, 0.0, 2);
+  ASSERT_TRUE(s.factorize(q) && s.solve(b, x));
+  EXPECT_EQ(s.analyses(), 2);
+  EXPECT_EQ(s.factorizations(), 2);
+  EXPECT_EQ(s.reused_solves(), 0);
+  EXPECT_LT(relative_residual(q, x, b), 1e-13);
+}
+
+TEST(FactorReuse, WithoutTheOptionEveryFactorizeFactorises) {
+  LinearSolve s(LinearSolverKind::umfpack, 1e-10, false);
+  const Eigen::VectorXd b = rhs();
+  Eigen::VectorXd x;
+  ASSERT_TRUE(s.factorize(convection_diffusion(2.5, 0.0, 0.0, 1)) && s.solve(b, x));
+  ASSERT_TRUE(s.factorize(convection_diffusion(2.5, 0.02, 0.0, 1)) && s.solve(b, x));
+  EXPECT_EQ(s.factorizations(), 2);
+  EXPECT_EQ(s.reused_solves(), 0);
+}
+
+}  // namespace loom
