@@ -258,19 +258,29 @@ bool LinearSolve::factorize_now(const SparsePattern& pattern) {
   }
 }
 
+bool LinearSolve::solve_deferred(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  ++reused_solves_;
+  const GmresOutcome gmres = factor_preconditioned_gmres(pending_->matrix, *solver_, b, x, cg_tolerance_, kReuseIterations);
+  gmres_iterations_ += gmres.iterations;
+  if (!gmres.converged) {
+    ++reuse_fallbacks_;
+    return false;
+  }
+  pending_ = nullptr;
+  refactor_next_ = gmres.iterations > kRefactorAbove;
+  return true;
+}
+
+bool LinearSolve::factorize_deferred() {
+  const SparsePattern& pattern = *pending_;
+  pending_ = nullptr;
+  return factorize_now(pattern);
+}
+
 bool LinearSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (pending_) {
-    const SparsePattern& pattern = *pending_;
-    pending_ = nullptr;
-    ++reused_solves_;
-    const GmresOutcome gmres = factor_preconditioned_gmres(pattern.matrix, *solver_, b, x, cg_tolerance_, kReuseIterations);
-    gmres_iterations_ += gmres.iterations;
-    if (gmres.converged) {
-      refactor_next_ = gmres.iterations > kRefactorAbove;
-      return true;
-    }
-    ++reuse_fallbacks_;
-    if (!factorize_now(pattern)) return false;
+    if (solve_deferred(b, x)) return true;
+    if (!factorize_deferred()) return false;
   }
   if (solver_->solve(b, x)) return true;
   failure_ = std::string(solver_->name()) == "cg"

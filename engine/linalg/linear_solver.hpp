@@ -95,6 +95,13 @@ class LinearSolve {
   // Factorizes pattern.matrix (analysing it first if its pattern is new); false if it is singular.
   bool factorize(const SparsePattern& pattern);
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // solve() in two parts, so that a caller can time the factorisation a failed GMRES solve falls back on as a
+  // factorisation: deferred() is true after a factorize() that kept the earlier factorisation; solve_deferred()
+  // then tries GMRES (true: x solves it), and after a failed try factorize_deferred() factorises the matrix afresh
+  // (false: singular), after which solve() back-substitutes.
+  bool deferred() const { return pending_ != nullptr; }
+  bool solve_deferred(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  bool factorize_deferred();
   std::string backend() const;
   // A restarted run takes the back-end the run it continues had come to (automatic: UMFPACK once a
   // matrix was not positive definite), so that it factorizes as that run would have.

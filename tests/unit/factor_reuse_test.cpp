@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "engine/linalg/linear_solver.hpp"
+#include "engine/timing/timers.hpp"
+#include "systems/solve/solve_linear_step.hpp"
 
 namespace loom {
 namespace {
@@ -136,6 +138,27 @@ TEST(FactorReuse, WithoutTheOptionEveryFactorizeFactorises) {
   ASSERT_TRUE(s.factorize(convection_diffusion(2.5, 0.02, 0.0, 1)) && s.solve(b, x));
   EXPECT_EQ(s.factorizations(), 2);
   EXPECT_EQ(s.reused_solves(), 0);
+}
+
+// A run's profile puts each factorisation under newton/solve/factorize, the one a failed GMRES solve falls back on
+// too (it was timed as the back-substitution it happened in).
+TEST(FactorReuse, TheFactorisationAFailedGmresSolveFallsBackOnIsTimedAsAFactorisation) {
+  LinearSolve s(LinearSolverKind::umfpack, 1e-10, true);
+  Timers timers;
+  LinearSystem system;
+  system.dofs.n_free = kN;
+  system.pattern = convection_diffusion(2.5, 0.0, 0.0, 1);
+  system.residual = -rhs();
+  ASSERT_EQ(solve_free_dofs(s, system, timers), LinearSolveStatus::ok);
+  system.pattern = convection_diffusion(2.02, 0.0, 0.0, 1);  // too far for GMRES on the kept factor (test above)
+  ASSERT_EQ(solve_free_dofs(s, system, timers), LinearSolveStatus::ok);
+  ASSERT_EQ(s.reuse_fallbacks(), 1);
+  EXPECT_EQ(s.factorizations(), 2);
+  EXPECT_LT(relative_residual(system.pattern, system.increment, rhs()), 1e-13);
+  const auto stats = timers.snapshot();
+  // Two factorize scopes (the second only defers), the fallback's own scope; the failed GMRES try is a solve.
+  EXPECT_EQ(stats.at("newton/solve/factorize").calls, 3);
+  EXPECT_EQ(stats.at("newton/solve/back_substitute").calls, 3);
 }
 
 }  // namespace loom
