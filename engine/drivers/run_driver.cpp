@@ -93,4 +93,11 @@ void summarise_run(const TimeLoopResult& result, const StepStatus& status, const
   summary.failure = os.str();
 }
 
+void summarise_linear_solver(const LinearSolve& solver, RunSummary& summary) {
+  summary.linear_solver = solver.backend();
+  summary.factorizations = solver.factorizations();
+  summary.reused_solves = solver.reused_solves();
+  summary.gmres_iterations = solver.gmres_iterations();
+}
+
 }  // namespace loom

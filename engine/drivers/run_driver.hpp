@@ -11,6 +11,7 @@
 
 #include "engine/drivers/run_summary.hpp"
 #include "engine/drivers/time_loop.hpp"
+#include "engine/linalg/linear_solver.hpp"
 
 namespace loom {
 
@@ -46,5 +47,7 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
 
 // Fills converged, steps_done, last_converged_step/time, newton_iterations, cutbacks and failure.
 void summarise_run(const TimeLoopResult& result, const StepStatus& status, const RunSchedule& schedule, RunSummary& summary);
+// Fills linear_solver (the back-end the run came to), factorizations, reused_solves and gmres_iterations.
+void summarise_linear_solver(const LinearSolve& solver, RunSummary& summary);
 
 }  // namespace loom

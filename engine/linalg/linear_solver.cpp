@@ -200,13 +200,25 @@ std::unique_ptr<LinearSolver> make_cg_solver(double tolerance) { return std::mak
 std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodSolver>(); }
 std::unique_ptr<LinearSolver> make_umfpack_solver(double wide_above) { return std::make_unique<UmfpackSolver>(wide_above); }
 
-LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance, bool reuse_factor)
-    : kind_(kind), cg_tolerance_(cg_tolerance), reuse_factor_(reuse_factor && kind != LinearSolverKind::cg) {
-  solver_ = kind == LinearSolverKind::umfpack            ? make_umfpack_solver()
-            : kind == LinearSolverKind::cg                 ? make_cg_solver(cg_tolerance)
-            : kind == LinearSolverKind::cholmod_bisected   ? make_bisected_cholmod_solver()
-                                                           : make_cholmod_solver();
+namespace {
+
+// The back-end of a kind; automatic starts with CHOLMOD.
+std::unique_ptr<LinearSolver> make_backend(LinearSolverKind kind, double cg_tolerance) {
+  switch (kind) {
+    case LinearSolverKind::umfpack: return make_umfpack_solver();
+    case LinearSolverKind::cg: return make_cg_solver(cg_tolerance);
+    case LinearSolverKind::cholmod_bisected: return make_bisected_cholmod_solver();
+    case LinearSolverKind::cholmod:
+    case LinearSolverKind::automatic: break;
+  }
+  return make_cholmod_solver();
 }
+
+}  // namespace
+
+LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance, bool reuse_factor)
+    : kind_(kind), cg_tolerance_(cg_tolerance), reuse_factor_(reuse_factor && kind != LinearSolverKind::cg),
+      solver_(make_backend(kind, cg_tolerance)) {}
 
 LinearSolve::~LinearSolve() = default;
 
@@ -294,10 +306,10 @@ std::string LinearSolve::backend() const { return solver_->name(); }
 
 void LinearSolve::use_backend(const std::string& name) {
   if (name == solver_->name()) return;
-  solver_ = name == "umfpack"            ? make_umfpack_solver()
-            : name == "cg"               ? make_cg_solver(cg_tolerance_)
-            : name == "cholmod_bisected" ? make_bisected_cholmod_solver()
-                                         : make_cholmod_solver();
+  LinearSolverKind kind = LinearSolverKind::cholmod;  // a back-end's name() is its kind's scene word
+  for (auto k : {LinearSolverKind::umfpack, LinearSolverKind::cg, LinearSolverKind::cholmod_bisected})
+    if (name == linear_solver_key(k)) kind = k;
+  solver_ = make_backend(kind, cg_tolerance_);
   analysed_version_ = 0;
   have_factor_ = false;
 }

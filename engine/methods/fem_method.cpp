@@ -374,9 +374,7 @@ RunSummary FemRunT<D>::run() {
   if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summarise_run(result, status_, schedule, summary);
-  summary.linear_solver = solver_.backend();
-  summary.factorizations = solver_.factorizations(), summary.reused_solves = solver_.reused_solves();
-  summary.gmres_iterations = solver_.gmres_iterations();
+  summarise_linear_solver(solver_, summary);
   wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.wall_seconds = wall_;
   return summary;

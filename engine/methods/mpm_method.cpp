@@ -364,9 +364,7 @@ RunSummary MpmRunT<D>::run() {
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summary.dofs = m_.system.dofs.n_free;
   summarise_run(result, status_, schedule, summary);
-  summary.linear_solver = solver_.backend();
-  summary.factorizations = solver_.factorizations(), summary.reused_solves = solver_.reused_solves();
-  summary.gmres_iterations = solver_.gmres_iterations();
+  summarise_linear_solver(solver_, summary);
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
