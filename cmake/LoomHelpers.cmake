@@ -26,7 +26,7 @@ function(loom_add_benchmark)
   if(NOT B_SMOKE)
     set(B_SMOKE "/1024/|/1000/|/16/")  # the smallest size of most benchmarks
   endif()
-  add_executable(${B_NAME} ${B_SOURCES})
+  add_executable(${B_NAME} ${B_SOURCES} ${PROJECT_SOURCE_DIR}/perf/allocator_policy.cpp)
   target_link_libraries(${B_NAME} PRIVATE benchmark::benchmark ${B_LIBS})
   loom_set_warnings(${B_NAME})
   if(LOOM_BUILD_TESTS)
