@@ -165,7 +165,9 @@ TEST(HenckyPerzyna, TangentMatchesFiniteDifferences) {
         EXPECT_LT((P - r.tau * f.inverse().transpose()).norm(), 1e-14);
         EXPECT_LT((A - fd_tangent(m, f, be, deviatoric)).cwiseAbs().maxCoeff(), 1e-7) << "tau0 " << tau0 << " deviatoric " << deviatoric << "\nf\n" << f;
       }
-    if (tau0 < 1) EXPECT_GT(plastic, 4);
+    if (tau0 < 1) {
+      EXPECT_GT(plastic, 4);
+    }
   }
 }
 
