@@ -4,7 +4,9 @@
 //    surface folds onto x = 0 at step 350, and no particle behind x = 0 or y = 0 by more than the penetration probe
 //    at any step;
 //  - the loaded part of the top held horizontally, quasi-statically (the set-up the paper's curves need): 1000 steps,
-//    a smooth, stiffening path.
+//    a smooth, stiffening path, no particle behind a line by more than the penetration probe at any step.
+// The scene as committed, to step 1000 after its fold, is a stress test (tests/stress/moderate_block_walls_full_test.cpp):
+// which variants get there after the fold depends on round-off.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -49,11 +51,13 @@ TEST(ModerateBlockWalls, WithTheLoadedTopHeldReachesTheLastStepSmoothly) {
   RunSummary summary;
   const auto p = run_scene({"boundary[load].displacement.x=0.0", "material[rubber].density=1.1e-9", "output.every=0"}, "moderate_walls_held", summary);
   ASSERT_TRUE(summary.completed) << summary.failure;
-  const auto u = p.column("u_y_mid"), pen = p.column("penetration");
+  const auto u = p.column("u_y_mid"), pen = p.column("penetration"), x_min = p.column("x_min"), y_min = p.column("y_min");
   ASSERT_EQ(u.size(), 1001u);
   EXPECT_NEAR(u[500], -27.66, 0.1);
   EXPECT_NEAR(u[1000], -35.95, 0.5);
   EXPECT_LT(*std::max_element(pen.begin(), pen.end()), 0.1);
+  for (std::size_t k = 0; k < u.size(); ++k)  // to the last step: no particle behind a line beyond the penetration
+    EXPECT_LE(std::max({-x_min[k], -y_min[k], 0.0}), pen[k] + 1e-12) << "step " << k;
   double worst_rise = 0.0;  // no jump back up along the path
   for (std::size_t k = 1; k < u.size(); ++k) worst_rise = std::max(worst_rise, u[k] - u[k - 1]);
   EXPECT_LT(worst_rise, 0.2);

@@ -139,7 +139,8 @@ TEST(SurfaceMerging, AColumnFallingOntoALayerJoinsItWithoutCrossingSurfaces) {
 
 // A block of paste (tau0 = 1000 Pa: rho g H = 1130 Pa at its base, shear stresses below the yield stress) resting on a
 // stick ground, remeshed before every one of 10^4 steps: after the elastic sag (Bossak's damping settles it in a few
-// hundred steps) nothing moves.
+// hundred steps) nothing moves; the ground then carries the weight to 1e-8, and no particle ends a step below it by
+// more than the penetration probe.
 TEST(RestingBodyOnWalls, StaysAtRestThroughTenThousandRemeshes) {
   const std::string text = "[scene]\nname = \"resting\"\nmethod = \"es_pfem\"\n"
                            "[time]\nintegrator = \"bossak\"\ndt = 5e-3\nsteps = 10000\n"
@@ -156,6 +157,9 @@ TEST(RestingBodyOnWalls, StaysAtRestThroughTenThousandRemeshes) {
                            "[[probe]]\nname = \"mass\"\nkind = \"mass\"\n"
                            "[[probe]]\nname = \"area\"\nkind = \"volume\"\n"
                            "[[probe]]\nname = \"changed\"\nkind = \"remesh\"\nquantity = \"changed\"\n"
+                           "[[probe]]\nname = \"Fy\"\nkind = \"wall_force\"\nwall = \"ground\"\ncomponent = \"y\"\n"
+                           "[[probe]]\nname = \"gap\"\nkind = \"penetration\"\n"
+                           "[[probe]]\nname = \"ymin\"\nkind = \"extent\"\ncomponent = \"y\"\nbound = \"min\"\n"
                            "[output]\nevery = 0\n";
   testing::TempDir dir("resting_walls");
   auto run = testing::make_fem_run(testing::scene_from_text(text), dir.path());
@@ -164,7 +168,8 @@ TEST(RestingBodyOnWalls, StaysAtRestThroughTenThousandRemeshes) {
   ASSERT_EQ(summary.steps_done, 10000);
   const auto probes = testing::read_probes(dir.file("probes.csv"));
   const auto top = probes.column("top"), right = probes.column("right"), speed = probes.column("speed"), mass = probes.column("mass"),
-             area = probes.column("area"), changed = probes.column("changed");
+             area = probes.column("area"), changed = probes.column("changed"), Fy = probes.column("Fy"), gap = probes.column("gap"),
+             ymin = probes.column("ymin");
   const std::size_t settled = 2000;
   double drift = 0.0, fastest = 0.0;
   int changes = 0;
@@ -178,8 +183,14 @@ TEST(RestingBodyOnWalls, StaysAtRestThroughTenThousandRemeshes) {
   EXPECT_EQ(changes, 0);
   EXPECT_EQ(mass.back(), mass[1]);
   EXPECT_NEAR(area.back(), area[settled], 1e-12 * area[settled]);
-  std::printf("[resting on walls] sag %.3e m; after step %zu: largest move %.1e m, speed %.1e m/s, %d connectivity changes\n", 0.05 - top.back(),
-              settled, drift, fastest, changes);
+  // At rest the stick ground carries the weight (the mass probe is rho times the reference area), and at no step
+  // does a particle lie below it by more than the penetration probe.
+  EXPECT_NEAR(Fy.back(), 9.81 * mass.back(), 1e-8 * 9.81 * mass.back());
+  for (std::size_t k = 0; k < ymin.size(); ++k) EXPECT_LE(std::max(-ymin[k], 0.0), gap[k] + 1e-15) << "step " << k;
+  std::printf("[resting on walls] sag %.3e m; after step %zu: largest move %.1e m, speed %.1e m/s, %d connectivity changes; "
+              "wall force / weight - 1 = %.1e, largest penetration %.2e m\n",
+              0.05 - top.back(), settled, drift, fastest, changes, Fy.back() / (9.81 * mass.back()) - 1.0,
+              *std::max_element(gap.begin(), gap.end()));
 }
 
 TEST(StopWhen, EndsTheRunOnceTheProbeFallsBelowItsBound) {
