@@ -2,7 +2,8 @@
 # Smoke test of tools/study and tools/render (ctest label scene): a two-case study into a temporary
 # directory, then checks that the CSV has its columns and rows, that every plot and the picture are PNG
 # files, that tools/profile_folded reads a --profile run, that tools/arrest_balance.py reads walls as loom
-# does and that tools/first_row.py measures a mesh's first row. Usage: check_tools.sh LOOM
+# does, that tools/first_row.py measures a mesh's first row and that tools/probe_history.py samples and dates
+# arrests. Usage: check_tools.sh LOOM
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 loom=$1
@@ -64,4 +65,14 @@ tools/first_row.py "$frame" > "$out/first_row" || { echo "first_row failed"; exi
 sed -n 's/.*on the ground \([0-9]*\), first row median \([0-9.]*\) mm, largest \([0-9.]*\) mm.*/\1 \2 \3/p' "$out/first_row" |
   awk '{ ok = ($1 == 11 && $2 > 4.85 && $3 < 4.95 && $3 - $2 < 0.03) } END { exit !ok }' \
   || { echo "first_row: expected 11 ground particles and a first row 4.85-4.95 mm above them:"; cat "$out/first_row"; exit 1; }
+# tools/probe_history.py: two runs side by side at every second (the shorter one's column empty past its end), and the
+# arrest of a front that stops at t = 2 s against one still moving.
+printf 'step,time,front\n0,0,1.0\n1,0.5,1.5\n2,1,2.0\n3,1.5,2.5\n4,2,3.0\n5,2.5,3.0\n6,3,3.0\n' > "$out/a.csv"
+printf 'step,time,front\n0,0,1.0\n1,1,1.2\n2,2,1.4\n' > "$out/b.csv"
+tools/probe_history.py a="$out/a.csv" b="$out/b.csv" --csv "$out/history.csv" --arrest front --within 1e-6 --window 1.0 > "$out/arrest" \
+  || { echo "probe_history failed"; exit 1; }
+printf 'time,front_a,front_b\n0,1.0,1.0\n1,2.0,1.2\n2,3.0,1.4\n3,3.0,\n' | diff - <(tr -d '\r' < "$out/history.csv") \
+  || { echo "probe_history: wrong CSV"; exit 1; }
+grep -q '^a: front 3 at t = 3.00 s; within 1e-06 of it from t = 2.00 s$' "$out/arrest" && grep -q '^b: .*STILL MOVING$' "$out/arrest" \
+  || { echo "probe_history: wrong arrest:"; cat "$out/arrest"; exit 1; }
 echo "tools ok"
