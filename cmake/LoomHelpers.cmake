@@ -1,5 +1,12 @@
 # Helpers shared by every target of the build.
 
+# Compiled into every program (the loom command, each test and benchmark), not into a library: the process's
+# allocator policy (engine/core/allocator.hpp) and the OpenMP regions of one (engine/linalg/openmp_regions_of_one.cpp),
+# which must be the executable's own to take effect.
+set(LOOM_PROGRAM_SOURCES
+  ${PROJECT_SOURCE_DIR}/engine/core/allocator_at_start.cpp
+  ${PROJECT_SOURCE_DIR}/engine/linalg/openmp_regions_of_one.cpp)
+
 function(loom_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor)
   if(LOOM_WARNINGS_AS_ERRORS)
@@ -10,7 +17,7 @@ endfunction()
 # loom_add_test(NAME name SOURCES a.cpp ... [LABELS unit verification scene stress] [LIBS ...])
 function(loom_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LABELS;LIBS" ${ARGN})
-  add_executable(${T_NAME} ${T_SOURCES} ${PROJECT_SOURCE_DIR}/engine/core/allocator_at_start.cpp)
+  add_executable(${T_NAME} ${T_SOURCES} ${LOOM_PROGRAM_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE loom_testing GTest::gtest_main ${T_LIBS})
   loom_set_warnings(${T_NAME})
   # The solver thread pins of the loom program (engine/cli/main.cpp) for tests that run systems in-process.
@@ -26,7 +33,7 @@ function(loom_add_benchmark)
   if(NOT B_SMOKE)
     set(B_SMOKE "/1024/|/1000/|/16/")  # the smallest size of most benchmarks
   endif()
-  add_executable(${B_NAME} ${B_SOURCES} ${PROJECT_SOURCE_DIR}/engine/core/allocator_at_start.cpp)
+  add_executable(${B_NAME} ${B_SOURCES} ${LOOM_PROGRAM_SOURCES})
   target_link_libraries(${B_NAME} PRIVATE benchmark::benchmark ${B_LIBS})
   loom_set_warnings(${B_NAME})
   if(LOOM_BUILD_TESTS)

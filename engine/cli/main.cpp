@@ -17,7 +17,6 @@
 #include <string>
 #include <vector>
 
-#include "engine/core/allocator.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/core/interrupt.hpp"
 #include "engine/io/console_format.hpp"
@@ -213,7 +212,6 @@ void pin_solver_threads(char** argv) {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "run") pin_solver_threads(argv);
-  loom::keep_freed_memory_in_heap();
   try {
     const Args a = parse(argc, argv);
     if (a.command == "--version" || a.command == "version") {

@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
-"""Where loom's memory comes from, and what it costs: each case run twice, alternately, with loom's allocator policy
-(engine/core/allocator.hpp: freed blocks stay in the heap) and with glibc's own (LOOM_MALLOC=system: large blocks by
-mmap, given back at free), on one thread. Prints the CPU seconds (user + system) of each, the system share, the
-largest resident size and the ratio, and checks that the two runs' probes.csv are identical byte for byte (the policy
-decides only where memory comes from).
+"""loom's run-time policies against the C library's and libgomp's defaults: each case run alternately as loom runs
+it (A) and with one environment assignment that turns a policy off (B), on one thread. Prints the CPU seconds (user
++ system) of each, the system share, the largest resident size and the ratio B / A, and checks that the two runs'
+probes.csv are identical byte for byte (the policies decide where memory comes from and which thread runs a region
+of one, never what is computed).
 
-  perf/malloc_policy.py [--loom build/loom] [--rounds 2] [--only NAME]
+  perf/policy_ab.py --env LOOM_MALLOC=system      # freed memory given back to the system (engine/core/allocator.hpp)
+  perf/policy_ab.py --env LOOM_OPENMP=libgomp     # CHOLMOD's OpenMP regions through libgomp (openmp_regions_of_one.cpp)
+  perf/policy_ab.py --env ... [--loom build/loom] [--rounds 2] [--only NAME]
 
-Exit 1 if any pair's probes differ. CPU time, not wall time, is compared: it is what the policy changes and the
-other core's load moves it less. Results: perf/README.md, "Freed memory stays in the heap".
+Exit 1 if any pair's probes differ. CPU time, not wall time, is compared: it is what the policies change and the
+other core's load moves it less. Results: perf/README.md, "Freed memory stays in the heap" and "OpenMP regions of
+one thread".
 """
 import argparse
 import filecmp
@@ -29,11 +32,13 @@ CASES = [
 ]
 
 
-def run(loom, scene, sets, out, policy):
+def run(loom, scene, sets, out, assignment):
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_THREAD_LIMIT="1")
-    env.pop("LOOM_MALLOC", None)
-    if policy == "system":
-        env["LOOM_MALLOC"] = "system"
+    for name in ("LOOM_MALLOC", "LOOM_OPENMP"):
+        env.pop(name, None)
+    if assignment:
+        name, _, value = assignment.partition("=")
+        env[name] = value
     cmd = [loom, "run", scene, "--threads", "1", "--quiet", "--out", out, "--set", "output.every=0"]
     for s in sets:
         cmd += ["--set", s]
@@ -43,40 +48,44 @@ def run(loom, scene, sets, out, policy):
         proc.returncode = os.waitstatus_to_exitcode(status)
         if proc.returncode != 0:
             err.seek(0)
-            sys.exit(f"malloc_policy: {' '.join(cmd)} exited {proc.returncode}:\n{err.read()}")
+            sys.exit(f"policy_ab: {' '.join(cmd)} exited {proc.returncode}:\n{err.read()}")
     return usage.ru_utime + usage.ru_stime, usage.ru_stime, usage.ru_maxrss / 1024.0
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--env", required=True, help="NAME=VALUE: the assignment of run B")
     ap.add_argument("--loom", default="build/loom")
     ap.add_argument("--rounds", type=int, default=2)
     ap.add_argument("--only", help="run only the case of this name")
     a = ap.parse_args()
+    if "=" not in a.env:
+        sys.exit(f"policy_ab: --env {a.env}: expected NAME=VALUE")
     cases = [c for c in CASES if not a.only or c[0] == a.only]
     if not cases:
-        sys.exit(f"malloc_policy: no case named {a.only}")
-    print("| case | policy | CPU s (best of %d) | system share | max RSS MB | CPU ratio system / heap |" % a.rounds)
+        sys.exit(f"policy_ab: no case named {a.only}")
+    print("| case | run | CPU s (best of %d) | system share | max RSS MB | CPU ratio B / A |" % a.rounds)
     print("| --- | --- | --- | --- | --- | --- |")
     differ = False
     with tempfile.TemporaryDirectory() as tmp:
         for name, scene, sets in cases:
             best = {}
             for r in range(a.rounds):
-                for policy in (("heap", "system") if r % 2 == 0 else ("system", "heap")):
+                for policy in (("A", "B") if r % 2 == 0 else ("B", "A")):
                     out = os.path.join(tmp, f"{name}_{policy}_{r}")
-                    cpu, system, rss = run(a.loom, scene, sets, out, policy)
+                    cpu, system, rss = run(a.loom, scene, sets, out, a.env if policy == "B" else None)
                     if policy not in best or cpu < best[policy][0]:
                         best[policy] = (cpu, system, rss)
-                pair = [os.path.join(tmp, f"{name}_{p}_{r}", "probes.csv") for p in ("heap", "system")]
+                pair = [os.path.join(tmp, f"{name}_{p}_{r}", "probes.csv") for p in ("A", "B")]
                 if not filecmp.cmp(*pair, shallow=False):
-                    print(f"malloc_policy: {name} round {r}: probes differ between the policies", file=sys.stderr)
+                    print(f"policy_ab: {name} round {r}: probes differ between A and B", file=sys.stderr)
                     differ = True
-            ratio = best["system"][0] / best["heap"][0]
-            for policy in ("heap", "system"):
+            ratio = best["B"][0] / best["A"][0]
+            for policy in ("A", "B"):
                 cpu, system, rss = best[policy]
-                print(f"| {name} | {policy} | {cpu:.2f} | {100 * system / cpu:.0f} % | {rss:.0f} | "
-                      f"{'%.2f' % ratio if policy == 'system' else ''} |", flush=True)
+                label = "loom" if policy == "A" else a.env
+                print(f"| {name} | {label} | {cpu:.2f} | {100 * system / cpu:.0f} % | {rss:.0f} | "
+                      f"{'%.2f' % ratio if policy == 'B' else ''} |", flush=True)
     return 1 if differ else 0
 
 
