@@ -7,6 +7,12 @@ set(LOOM_PROGRAM_SOURCES
   ${PROJECT_SOURCE_DIR}/engine/core/allocator_at_start.cpp
   ${PROJECT_SOURCE_DIR}/engine/linalg/openmp_regions_of_one.cpp)
 
+# A program built with LOOM_PROGRAM_SOURCES exports its GOMP_parallel, so that the libraries' calls bind to it (the
+# linker would export it anyway while a library on the link line imports it; this says so).
+function(loom_program target)
+  target_link_options(${target} PRIVATE "LINKER:--export-dynamic-symbol=GOMP_parallel")
+endfunction()
+
 function(loom_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor)
   if(LOOM_WARNINGS_AS_ERRORS)
@@ -18,6 +24,7 @@ endfunction()
 function(loom_add_test)
   cmake_parse_arguments(T "" "NAME" "SOURCES;LABELS;LIBS" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES} ${LOOM_PROGRAM_SOURCES})
+  loom_program(${T_NAME})
   target_link_libraries(${T_NAME} PRIVATE loom_testing GTest::gtest_main ${T_LIBS})
   loom_set_warnings(${T_NAME})
   # The solver thread pins of the loom program (engine/cli/main.cpp) for tests that run systems in-process.
@@ -34,6 +41,7 @@ function(loom_add_benchmark)
     set(B_SMOKE "/1024/|/1000/|/16/")  # the smallest size of most benchmarks
   endif()
   add_executable(${B_NAME} ${B_SOURCES} ${LOOM_PROGRAM_SOURCES})
+  loom_program(${B_NAME})
   target_link_libraries(${B_NAME} PRIVATE benchmark::benchmark ${B_LIBS})
   loom_set_warnings(${B_NAME})
   if(LOOM_BUILD_TESTS)

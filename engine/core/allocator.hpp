@@ -9,10 +9,12 @@
 
 namespace loom {
 
-// Large blocks come from the heap, not from mmap, and the heap's top is returned to the system only beyond
-// 2 GiB free. Results are unchanged (only where the memory comes from); the resident size stays near the run's
-// peak instead of falling between factorisations. Idempotent; a no-op where the C library is not glibc, and with
-// LOOM_MALLOC=system in the environment (glibc's own policy, to compare: perf/policy_ab.py).
+// Large blocks of the main thread come from the heap, not from mmap, and the heap's top is returned to the system
+// only beyond 2 GiB free. Only where the memory comes from changes (the probes of perf/policy_ab.py's cases were
+// identical byte for byte); the resident size stays near the run's peak instead of falling between factorisations,
+// and a block that grows (realloc) is copied instead of remapped, so it briefly needs its old and new size. Idempotent;
+// a no-op where the C library is not glibc, and with LOOM_MALLOC=system in the environment (glibc's own policy, to
+// compare: perf/policy_ab.py); another value of LOOM_MALLOC means loom's policy.
 void keep_freed_memory_in_heap();
 
 }  // namespace loom

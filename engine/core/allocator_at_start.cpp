@@ -1,7 +1,7 @@
 // Compiled into every program, the loom command, each test and each benchmark (LOOM_PROGRAM_SOURCES,
 // cmake/LoomHelpers.cmake): each runs under loom's allocator policy (engine/core/allocator.hpp) from before main, so
 // that a timed factorisation costs what it costs in a run, and a test that runs a recipe in-process takes the time the
-// run would. Before 2026-12-05 they all ran under glibc's own (perf/README.md, "Freed memory stays in the heap").
+// run would (perf/README.md, "Freed memory stays in the heap").
 #include "engine/core/allocator.hpp"
 
 namespace {

@@ -98,7 +98,8 @@ class LinearSolve {
   // solve() in two parts, so that a caller can time the factorisation a failed GMRES solve falls back on as a
   // factorisation: deferred() is true after a factorize() that kept the earlier factorisation; solve_deferred()
   // then tries GMRES (true: x solves it), and after a failed try factorize_deferred() factorises the matrix afresh
-  // (false: singular), after which solve() back-substitutes.
+  // (false: singular), after which solve() back-substitutes. After a false solve_deferred() the matrix is still the
+  // deferred one: factorize_deferred() must come next (solve() does both in that order).
   bool deferred() const { return pending_ != nullptr; }
   bool solve_deferred(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   bool factorize_deferred();

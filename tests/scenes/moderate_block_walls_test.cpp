@@ -4,7 +4,7 @@
 //    surface folds onto x = 0 at step 350, and no particle behind x = 0 or y = 0 by more than the penetration probe
 //    at any step;
 //  - the loaded part of the top held horizontally, quasi-statically (the set-up the paper's curves need): 1000 steps,
-//    a smooth, stiffening path, no particle behind a line by more than the penetration probe at any step.
+//    a smooth, stiffening path, the penetration of either line below 0.1 mm (3 % of the spacing) at every step.
 // The scene as committed, to step 1000 after its fold, is a stress test (tests/stress/moderate_block_walls_full_test.cpp):
 // which variants get there after the fold depends on round-off.
 #include <gtest/gtest.h>
@@ -56,7 +56,7 @@ TEST(ModerateBlockWalls, WithTheLoadedTopHeldReachesTheLastStepSmoothly) {
   EXPECT_NEAR(u[500], -27.66, 0.1);
   EXPECT_NEAR(u[1000], -35.95, 0.5);
   EXPECT_LT(*std::max_element(pen.begin(), pen.end()), 0.1);
-  for (std::size_t k = 0; k < u.size(); ++k)  // to the last step: no particle behind a line beyond the penetration
+  for (std::size_t k = 0; k < u.size(); ++k)  // consistency of the probes: no particle deeper than the penetration
     EXPECT_LE(std::max({-x_min[k], -y_min[k], 0.0}), pen[k] + 1e-12) << "step " << k;
   double worst_rise = 0.0;  // no jump back up along the path
   for (std::size_t k = 1; k < u.size(); ++k) worst_rise = std::max(worst_rise, u[k] - u[k - 1]);

@@ -1,6 +1,7 @@
 // engine/linalg/openmp_regions_of_one.cpp: with OpenMP limited to one thread (as ctest and the loom command run),
-// CHOLMOD's parallel regions are bound to the program's GOMP_parallel and run on the calling thread, and the
-// factorisation is right; with any other limit every region goes to libgomp.
+// CHOLMOD's parallel regions are bound to the program's GOMP_parallel and run on the calling thread (CHOLMOD is told
+// to factorise supernodally, a region per supernode), and the factorisation is right; with any other limit, or with
+// LOOM_OPENMP=libgomp (ctest runs the program so a second time), every region goes to libgomp.
 #include <gtest/gtest.h>
 
 #include <cstdio>
