@@ -160,6 +160,20 @@ TEST(Program, ProgressLinesGoToALogWhenStderrIsNotATerminal) {
   EXPECT_GE(std::distance(std::sregex_iterator(err.begin(), err.end(), line), std::sregex_iterator()), 2) << err;
 }
 
+// With --stop-after the line counts to that step, not to the scene's last: the remaining time is the run's.
+TEST(Program, ProgressCountsToTheStepOfStopAfter) {
+  TempDir dir("program_progress_stop_after");
+  const std::string scene = kSource + "/scenes/cooks_membrane_mpm_dynamic.toml";
+  const std::string cmd = "LOOM_PROGRESS_SECONDS=0.05 " + std::string(LOOM_BINARY) + " run " + scene + " --out " + dir.file("out") +
+                          " --set time.steps=1000 --stop-after 12 --set output.every=0 --set body[0].particles_per_cell=3 >/dev/null 2>" +
+                          dir.file("err");
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir.file("err"));
+  const std::string err = read_text(dir.file("err"));
+  const std::regex line(R"(step ([0-9]+)/12  t = )");
+  EXPECT_GE(std::distance(std::sregex_iterator(err.begin(), err.end(), line), std::sregex_iterator()), 2) << err;
+  EXPECT_EQ(err.find("/1000  t = "), std::string::npos) << err;
+}
+
 TEST(Program, RunPrintsTheTimingTableUnlessQuiet) {
   TempDir dir("program_table");
   const Command c = run_loom({"run", kCook, "--out", dir.path()});
