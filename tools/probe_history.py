@@ -8,6 +8,11 @@ The CSV has a column time and one column <probe>_<label> per probe and run (empt
 whose time is a multiple of --every (to 1e-9 s). With --arrest, each run's last value of that probe is printed with
 the time from which the probe stays within --within of it (its arrest, by that tolerance) and the run's last time;
 a run whose probe moved by more than --within over its last --window seconds is reported as still moving.
+With --plot, the first of --probes against time for every run (every row, not only the samples), beside
+--model CSV (a time column and that probe's; '#' lines skipped: tools/lubrication_spreading.py's output) and
+horizontal --level VALUE=LABEL lines:
+
+    tools/probe_history.py n18=OUT18/probes.csv --probes front --plot F.png --model lub.csv --level 0.770=shallow
 """
 import argparse
 import csv
@@ -47,6 +52,29 @@ def arrest(rows, probe, within, window):
     return last, since, t[-1], moving
 
 
+def plot(path, runs, probe, model, levels):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    for label, rows in runs:
+        ax.plot([float(r["time"]) for r in rows], [float(r[probe]) for r in rows], "-", lw=1.2, label=label)
+    if model:
+        with open(model) as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+        if not rows or probe not in rows[0]:
+            sys.exit(f"probe_history: {model}: no column '{probe}'")
+        ax.plot([float(r["time"]) for r in rows], [float(r[probe]) for r in rows], "k--", lw=1, label="model")
+    for spec, style in zip(levels, [":", "-.", (0, (1, 3)), (0, (5, 5))] * len(levels)):
+        value, _, label = spec.partition("=")
+        ax.axhline(float(value), color="grey", lw=0.9, ls=style, label=label or value)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel(probe)
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("runs", nargs="+", help="LABEL=path/to/probes.csv")
@@ -56,6 +84,9 @@ def main():
     ap.add_argument("--arrest", help="report when this probe came to rest in each run")
     ap.add_argument("--within", type=float, default=1e-4, help="tolerance of --arrest, in the probe's unit")
     ap.add_argument("--window", type=float, default=10.0, help="seconds at the end a resting probe must not move")
+    ap.add_argument("--plot", help="write a PNG of the first of --probes against time")
+    ap.add_argument("--model", help="with --plot: a CSV with time and the probe's column to draw beside the runs")
+    ap.add_argument("--level", action="append", default=[], help="with --plot: VALUE=LABEL, a horizontal line")
     a = ap.parse_args()
     runs = []
     for spec in a.runs:
@@ -76,6 +107,12 @@ def main():
             w.writerow(["time"] + [f"{p}_{label}" for p in probes for label, _ in samples])
             for k in keys:
                 w.writerow([f"{k * a.every:g}"] + [s[k][p] if k in s else "" for p in probes for _, s in samples])
+    if a.plot:
+        probe = a.probes.split(",")[0]
+        for label, rows in runs:
+            if probe not in rows[0]:
+                sys.exit(f"probe_history: run {label} has no probe {probe}")
+        plot(a.plot, runs, probe, a.model, a.level)
     if a.arrest:
         for label, rows in runs:
             last, since, end, moving = arrest(rows, a.arrest, a.within, a.window)
