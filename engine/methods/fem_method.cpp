@@ -11,6 +11,7 @@
 #include "engine/drivers/time_loop.hpp"
 #include "engine/io/files.hpp"
 #include "engine/io/vtk_writer.hpp"
+#include "engine/methods/adaptive_step.hpp"
 #include "engine/methods/conditioning_note.hpp"
 #include "engine/methods/inlet_flow.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
@@ -371,6 +372,7 @@ RunSummary FemRunT<D>::run() {
   };
   hooks.wait_for_writer = [&] { writer_.wait(); };
   hooks.settled = [&](const StepContext& c) { return stop_.met(scene_.time, c.t, probe_values_); };
+  use_adaptive_step(scene_, probe_values_, hooks);
   if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summarise_run(result, status_, schedule, summary);

@@ -11,6 +11,7 @@
 #include "engine/io/files.hpp"
 #include "engine/scene/expression.hpp"
 #include "engine/io/vtk_writer.hpp"
+#include "engine/methods/adaptive_step.hpp"
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/methods/conditioning_note.hpp"
@@ -345,21 +346,7 @@ RunSummary MpmRunT<D>::run() {
   };
   hooks.wait_for_writer = [&] { writer_.wait(); };
   hooks.settled = [&](const StepContext& c) { return stop_.met(scene_.time, c.t, probe_values_); };
-  if (scene_.time.adaptive_probe != kNoIndex) {
-    // The step's size from the probe's value at the end of the step before (the initial state's at the start).
-    const std::string name = scene_.probes[std::size_t(scene_.time.adaptive_probe)].name;
-    hooks.step_size = [this, name](const StepContext& c) {
-      if (probe_values_.empty()) return scene_.time.dt;  // a restarted run before its first probes
-      const double v = probe_values_[std::size_t(scene_.time.adaptive_probe)];
-      std::string err;
-      const double dt = evaluate_formula(scene_.time.adaptive_expression, {{name, v}, {"t", c.t}}, &err);
-      LOOM_CHECK(err.empty() && dt > 0.0, RunError,
-                 "time.adaptive_dt.expression gives the step " << dt << " at " << name << " = " << v << ", t = " << c.t
-                                                               << (err.empty() ? "" : ": " + err) << "; a step must be > 0");
-      return dt;
-    };
-    hooks.end_time = scene_.time.end;
-  }
+  use_adaptive_step(scene_, probe_values_, hooks);
   if (options_.write_files) hooks.write_checkpoint = [&](int step) { write_checkpoint(step); };
   const TimeLoopResult result = drive_run(schedule, ctx_, *graph_, status_, hooks);
   summary.dofs = m_.system.dofs.n_free;

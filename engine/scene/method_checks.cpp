@@ -11,7 +11,6 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     time.error("predictor", "the MPM step starts from the grid reset to zero; predictor is used by methods fem, pfem and es_pfem");
   if (!mpm) {
     if (grid.present()) root.error("grid", "[grid] is used by method = \"mpm\" only");
-    if (time.has("adaptive_dt")) time.error("adaptive_dt", "adaptive time steps are implemented by methods mpm and mpm_fem");
     if (s.time.initial_acceleration == InitialAcceleration::equilibrium && s.time.mass == MassKind::consistent)
       time.error("initial_acceleration", "equilibrium solves for a_0 with the lumped mass; use mass = \"lumped\"");
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {

@@ -60,5 +60,31 @@ TEST(TimeLoop, CutBackSubStepsCompleteTheStepAtItsEnd) {
   EXPECT_EQ(f.sizes, (std::vector<double>{1.0, 0.5, 0.25, 0.25, 0.25, 0.25}));
 }
 
+// Adaptive steps summed from t = 0 miss time.end by round-off: 25 steps of 0.3 s sum to 7.499999999999997, of 0.7
+// s to 17.499999999999993 (short), of 4e-3 s to 0.10000000000000006 (past it). The run must end at time.end in its
+// 25th step, not add a sliver step of 1e-15 s (which the fixture, like Bossak's 1 / dt^2, fails).
+TEST(TimeLoop, AdaptiveStepsEndAtTimeEndWithoutASliver) {
+  int short_of_end = 0;  // cases whose summed steps fall short (so that the test tests the join)
+  for (const double step : {0.3, 0.7, 4e-3}) {
+    SCOPED_TRACE(step);
+    Fixture f;
+    f.limit = step;
+    const int n = 25;
+    double summed = 0.0;
+    for (int k = 0; k < n; ++k) summed += step;
+    const double end = n * step;
+    short_of_end += summed < end;
+    TimeLoopCallbacks callbacks;
+    callbacks.step_size = [step](const StepContext&) { return step; };
+    callbacks.end_time = end;
+    const TimeLoopResult r = run_time_loop(step, 2 * n, 0, f.ctx, f.graph, f.status, callbacks, {1, 0});
+    ASSERT_TRUE(r.completed) << r.failure;
+    EXPECT_EQ(r.last_converged_step, n);
+    EXPECT_EQ(r.last_step_time, end);
+    EXPECT_EQ(f.sizes.size(), std::size_t(n));
+  }
+  EXPECT_EQ(short_of_end, 2);
+}
+
 }  // namespace
 }  // namespace loom
