@@ -12,7 +12,9 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
   // The step the run ends at: with --stop-after that one (a phase of a long run on a scene of 10^6 steps showed
   // a remaining time of hundreds of hours).
   const int last_step = schedule.stop_after > 0 ? std::min(schedule.steps, schedule.stop_after) : schedule.steps;
-  Progress progress(last_step, schedule.progress, schedule.first_step);
+  // Adaptive steps end at a time, not a step: the estimate follows the time left.
+  Progress progress(last_step, schedule.progress, schedule.first_step, hooks.step_size && schedule.stop_after <= 0 ? hooks.end_time : 0.0,
+                    ctx.t);
   TimeLoopCallbacks callbacks;
   int checkpointed = -1;
   int completed = schedule.first_step - 1;  // the last scene step that completed (survives a throw from a hook)

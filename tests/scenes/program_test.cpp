@@ -174,6 +174,20 @@ TEST(Program, ProgressCountsToTheStepOfStopAfter) {
   EXPECT_EQ(err.find("/1000  t = "), std::string::npos) << err;
 }
 
+// Adaptive steps end at time.end: the line shows the time against it, and the remaining time follows from it.
+TEST(Program, ProgressOfAdaptiveStepsCountsTime) {
+  TempDir dir("program_progress_adaptive");
+  const std::string scene = kSource + "/tests/scenes/es_pfem_bingham_column.toml";
+  const std::string cmd = "LOOM_PROGRESS_SECONDS=0.01 " + std::string(LOOM_BINARY) + " run " + scene + " --out " + dir.file("out") +
+                          " --set output.every=0 --set time.steps=1000 --set 'time.adaptive_dt={ probe = \"top\", expression = \"2e-3\" }'"
+                          " --set time.end=0.06 >/dev/null 2>" + dir.file("err");
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << read_text(dir.file("err"));
+  const std::string err = read_text(dir.file("err"));
+  const std::regex line(R"(step ([0-9]+)  t = [0-9.e+-]+/0.06  newton [0-9]+  elapsed [0-9.]+ (ms|s)  remaining ~[0-9.]+ (ms|s)\n)");
+  EXPECT_GE(std::distance(std::sregex_iterator(err.begin(), err.end(), line), std::sregex_iterator()), 2) << err;
+  EXPECT_EQ(err.find("/1000"), std::string::npos) << err;
+}
+
 TEST(Program, RunPrintsTheTimingTableUnlessQuiet) {
   TempDir dir("program_table");
   const Command c = run_loom({"run", kCook, "--out", dir.path()});
