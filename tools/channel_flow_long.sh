@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # The channel flow (scenes/channel_flow_es.toml) on one of the paper's three meshes to t = 200 s, in three phases of
 # growing step: the pouring at dt = 5e-3 s to step 6000 (30 s), the first spreading at 0.02 s to step 7500 (60 s),
-# the creep to rest at 0.05 s to step 10300 (200 s). es_pfem has no adaptive step, and the pouring's step would take
+# the creep to rest at 0.05 s to step 10300 (200 s). The pouring's step would take
 # 10 times more steps over the 140 s of creep; the phases' result on n = 10 is 0.3 % from 5 ms steps throughout
 # (docs/BENCHMARKS.md, "The paper's three meshes to 200 s"). Each phase restarts from the newest checkpoint (every 500
-# steps), so a run interrupted anywhere continues when the script is run again with the same OUT.
+# steps), so a run interrupted anywhere continues when the script is run again with the same OUT. (time.adaptive_dt
+# gives the same schedule in one run: README, Free-surface flows; the committed study was run with this script.)
 # N is the mesh: h = 62.5 mm / N, the initial block [round(0.4 N), N] elements (the paper's 1300, 4800, 7300 triangles
 # at the end: N = 10, 18, 22, the meshes this was run on; N = 4 fails while pouring). Run time on one core: about
 # 15 min, 80 min and 2.5 h.
