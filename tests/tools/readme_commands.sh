@@ -12,7 +12,8 @@
 #    that a stop-and-restart pair of commands runs as written; the line's trailing comment stays a comment;
 #  - the commands run one after the other from the repository root and must exit 0.
 # Markers, in the line's trailing comment:
-#  - `(~N min)` or `(~N h)`: the command takes more than about half a minute; it is skipped. Mark every such
+#  - `~N min` or `~N h` anywhere in the comment, written `(~N min)` or inside a longer parenthesis such as
+#    `(coarse mesh, ~15 min)`: the command takes more than about half a minute; it is skipped. Mark every such
 #    command so.
 #  - `(exit N)`: the command is expected to exit with code N.
 # Usage lines are written `loom ...` (without `build/`) and are not run. Every ```toml block is written to a
@@ -59,7 +60,7 @@ fail() {  # fail LINE WHAT LOG
 n=0
 while IFS=$'\t' read -r line cmd; do
   n=$((n + 1))
-  if [[ $cmd =~ \(~[0-9.]+[[:space:]]*(min|h)\) ]]; then
+  if [[ $cmd =~ \#.*~[0-9.]+[[:space:]]*(min|h)([^[:alnum:]]|$) ]]; then
     echo "skip README.md:$line (expensive): $cmd"
     skipped=$((skipped + 1))
     continue
