@@ -61,7 +61,7 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
     if (grid.has("ghost_penalty")) grid.error("ghost_penalty", "the face ghost penalty belongs to 2D quadrilateral grids");
     const auto mpm = root.table("mpm");
     if (mpm.string("scheme") == "particle_newmark")  // read_mpm_options, which sets s.mpm.scheme, runs after this
-      mpm.error("scheme", "scheme = \"particle_newmark\" is two-dimensional; 3D runs the grid Newmark scheme of seed 003");
+      mpm.error("scheme", "scheme = \"particle_newmark\" is two-dimensional; 3D runs the grid Newmark scheme of [Moreno et al.]");
     const auto bodies = root.array("body");
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
       if (s.bodies[b].particles.kind != ParticleGenerator::none)

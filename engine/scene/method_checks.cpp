@@ -42,9 +42,9 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
   }
   if (!grid.present()) root.table("scene").error("method", std::string("method = \"") + method_name(s.scene.method) + "\" needs a background grid: add a [grid] table");
   if (s.time.integrator == Integrator::euler_backward || s.time.integrator == Integrator::bossak)
-    time.error("integrator", "method mpm integrates with newmark (seed 003 §3.3) or static");
+    time.error("integrator", "method mpm integrates with newmark ([Moreno et al.] §3.3) or static");
   if (s.solver.tangent == TangentUpdate::once_per_step) root.table("solver").error("tangent", "method mpm assembles its tangent at every iteration");
-  if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass (seed 003 §5)");
+  if (time.has("mass") && s.time.mass == MassKind::consistent) time.error("mass", "method mpm uses the lumped grid mass ([Moreno et al.] §5)");
   const bool coupled = s.scene.method == Method::mpm_fem;
   if (coupled) {
     // One MPM body (particles) and one or more FEM bodies (quad9 rectangles sharing the grid's nodes).
@@ -68,7 +68,7 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     const auto e = s.bodies[b].element;
     if (coupled && e == Formulation::quad9) continue;
     if (e != Formulation::p1 && e != Formulation::p1p1_up)
-      bodies[b].error("element", "method mpm takes element = \"p1\" (displacement) or \"p1p1_up\" (mixed, seed 003)");
+      bodies[b].error("element", "method mpm takes element = \"p1\" (displacement) or \"p1p1_up\" (mixed, [Moreno et al.])");
     const Index m = s.bodies[b].material;
     if (m != kNoIndex && e != Formulation::p1p1_up && s.materials[std::size_t(m)].nu == 0.5)
       materials[std::size_t(m)].error("nu", "nu = 0.5 (incompressible) needs element = \"p1p1_up\" on body \"" + s.bodies[b].name + "\"");

@@ -80,7 +80,7 @@ void read_mpm_options(SceneSpec& s, const TableReader& root) {
     if (t.has("receding_contact")) t.error("receding_contact", "receding contact belongs to scheme = \"particle_newmark\"");
     if (s.grid.quad9) grid.error("cells", "quad9 grids run scheme = \"particle_newmark\" (set [mpm] scheme)");
     for (const char* k : {"beta", "gamma"})
-      if (time.has(k)) time.error(k, std::string("method mpm's grid_newmark integrates with beta = 1/4, gamma = 1/2 (seed 003); ") + k +
+      if (time.has(k)) time.error(k, std::string("method mpm's grid_newmark integrates with beta = 1/4, gamma = 1/2 ([Moreno et al.]); ") + k +
                                          " is settable with [mpm] scheme = \"particle_newmark\"");
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
       if (s.bodies[b].particles.kind != ParticleGenerator::none)

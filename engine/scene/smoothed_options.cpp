@@ -22,7 +22,7 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   if (has_pressure(b.element)) {
     if (!t.has("alpha_stab"))
       t.error("element", std::string(element) + " needs alpha_stab, the dimensionless PPP factor of its pressure (0: unstabilised; the "
-                                                 "seed uses 0.5 for Cook's membrane and 200 for the flows)");
+                                                 "[Reinold 2021] uses 0.5 for Cook's membrane and 200 for the flows)");
     else b.alpha_stab = t.real("alpha_stab");
   } else if (t.has("alpha_stab")) {
     t.error("alpha_stab", "alpha_stab is used by element = \"es_up\" or \"fem_up\" only");

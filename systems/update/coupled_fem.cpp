@@ -45,7 +45,7 @@ void build_reset_field(const Cells& grid, Index grid_cells, const Nodes<2>& node
   K.setFromTriplets(ff.begin(), ff.end());
   out.K_ff = std::make_shared<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(K);
   LOOM_CHECK(out.K_ff->info() == Eigen::Success, RunError,
-             "the grid's reset field (seed 004 eq 8) is singular: a part of the grid is held neither by an FEM body nor by a boundary");
+             "the grid's reset field ([Aulisa 2019] eq 8) is singular: a part of the grid is held neither by an FEM body nor by a boundary");
 }
 
 void reset_grid(const StepContext&, const ResetField& reset, const std::vector<char>& fem_node, Nodes<2>& nodes) {

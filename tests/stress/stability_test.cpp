@@ -32,7 +32,7 @@ std::string known_limitation(const std::string& case_name) {
        "Newton stalls at a residual of ~3e-8 of the first in the first step (round-off floor above residual_relative = "
        "1e-8; the next row: holds with 1e-7)"},
       {"p1p1_uphi: constrained block (8x4), 0.2 mm in",
-       "p1p1_uphi depends on the load path: the history F~_n = c F_n (seed 000 eq 28) carries the volumetric correction "
+       "p1p1_uphi depends on the load path: the history F~_n = c F_n ([Schewe 2024] eq 28) carries the volumetric correction "
        "c = (phi/J)^(1/3) of every step into the next, so the static answer changes with the step size (Cook's "
        "membrane: 7e-5 between 1 and 50 steps; here 5 %)"},
       {"p1: constrained block (8x4), 0.2 mm in",
