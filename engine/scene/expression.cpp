@@ -31,6 +31,16 @@ Expression::Expression(const std::string& text, const std::string& where, int di
     const auto used = impl_->parser.GetUsedVar();
     impl_->constant = used.empty();
     impl_->uses_time = used.count("t") > 0;
+    // A constant that is not a number (sqrt(-9.81), 1/0) is a mistake in the scene, found at `loom check`, not at
+    // the first step that evaluates it.
+    if (impl_->constant) {
+      const double v = impl_->parser.Eval();
+      if (!std::isfinite(v)) {
+        std::ostringstream os;
+        os << where << ": invalid expression \"" << text << "\": its value is not finite (" << v << ")";
+        throw InputError(os.str());
+      }
+    }
     // z is defined so that a 2D scene's z gets a message that says why, not "unexpected token".
     if (dimension < 3 && used.count("z")) {
       std::ostringstream os;

@@ -63,6 +63,24 @@ TEST(Expression, NonFiniteValueIsARunError) {
   EXPECT_THROW(e(0, 0, 0), RunError);
 }
 
+// A constant that is not a number is bad input at once (loom check), with where it is; a non-constant
+// expression is judged where it is evaluated (above).
+TEST(Expression, NonFiniteConstantIsBadInput) {
+  for (const char* text : {"sqrt(-9.81)", "1/0", "-9.81 * ln(0)"}) {
+    SCOPED_TRACE(text);
+    try {
+      Expression e(text, "test.toml:4:9");
+      ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("test.toml:4:9"), std::string::npos) << msg;
+      EXPECT_NE(msg.find("its value is not finite"), std::string::npos) << msg;
+    }
+    EXPECT_NE(Expression::compile_error(text).find("its value is not finite"), std::string::npos);
+  }
+  EXPECT_TRUE(Expression::compile_error("sqrt(9.81)").empty());
+}
+
 TEST(Expression, MovedExpressionStillEvaluates) {
   Expression a("x + 1", "");
   Expression b = std::move(a);
