@@ -97,9 +97,15 @@ void check_memory(const SceneSpec& scene) {
     if (cells_of(scene.bodies[b].mesh) > cells_of(*mesh)) mesh = &scene.bodies[b].mesh, key = "body[" + std::to_string(b) + "].mesh.divisions";
   if (is_mpm(scene.scene.method) && scene.grid.present && cells_of(scene.grid.mesh) > cells_of(*mesh))
     mesh = &scene.grid.mesh, key = "grid.divisions";
+  // The divisions as the scene gives them: three numbers for a box, the layers of an extrusion under their own key.
+  std::ostringstream divisions;
+  divisions << "[" << mesh->nx << ", " << mesh->ny;
+  if (mesh->generator == MeshGenerator::box) divisions << ", " << mesh->nz;
+  divisions << "]";
+  if (mesh->generator != MeshGenerator::box && mesh->depth > 0.0) divisions << " with " << mesh->layers << " layers";
   std::ostringstream os;
   os.precision(3);
-  os << mesh->where << ": error: " << key << ": [" << mesh->nx << ", " << mesh->ny << "] makes about " << e.cells
+  os << mesh->where << ": error: " << key << ": " << divisions.str() << " makes about " << e.cells
      << " cells; the run would need about " << gb(e.bytes) << " of memory, and " << gb(available) << " are available (" << why
      << "); use fewer divisions";
   throw InputError(os.str());

@@ -48,6 +48,22 @@ TEST(RunErrors, DivisionsThatCannotFitInMemoryAreBadInputWithTheEstimate) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 }
 
+// The same in 3D names the three numbers of a box's divisions (it named two).
+TEST(RunErrors, ThreeDimensionalDivisionsThatCannotFitNameTheirThreeNumbers) {
+  TempDir dir("errors_memory_3d");
+  const std::string cmd = "ulimit -v 3000000; exec " + std::string(LOOM_BINARY) + " run " + kSource +
+                          "/scenes/block_3d.toml --quiet --out " + dir.file("out") +
+                          " --set 'body[0].mesh.divisions=[300,200,100]' 2>" + dir.file("err");
+  const int status = std::system(("sh -c \"" + cmd + "\"").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  const std::string err = read_text(dir.file("err"));
+  EXPECT_EQ(WEXITSTATUS(status), 2) << err;
+  EXPECT_NE(err.find("error: body[0].mesh.divisions: [300, 200, 100] makes about 3.6e+07 cells; the run would need about"), std::string::npos)
+      << err;
+  EXPECT_FALSE(looks_like_crash(err)) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
 // An alpha so small that the alpha shape removes every triangle: the run stops at once (exit 1) with that
 // reason; halving the step could not bring the triangles back, so no cut-back is tried.
 TEST(RunErrors, PfemAlphaThatRemovesTheWholeBodyStopsAtOnce) {
