@@ -28,7 +28,7 @@ class MpmNewtonProblemT final : public NonlinearProblem {
 
   bool assemble(bool with_tangent) override {
     if (m_.osgs && assembled_) {
-      ScopedTimer t(timers_, "newton/project_residuals");
+      ScopedTimer t(timers_, "newton/assemble/project_residuals");  // inside newton/assemble's scope
       project_residuals(ctx_, m_.materials, m_.grid, m_.activity, m_.particles, m_.particle_loc, m_.bc, m_.grid_nodes);
     }
     assembled_ = true;

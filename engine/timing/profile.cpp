@@ -18,10 +18,19 @@ struct Node {
   bool concurrent = false;  // ran beside its step's systems, not inside its parent
   std::vector<std::unique_ptr<Node>> children;
 
+  // The child on the path `label` (a concurrent entry is off every path).
   Node* child(const std::string& label) {
     for (auto& c : children)
-      if (c->name == label) return c.get();
+      if (c->name == label && !c->concurrent) return c.get();
     return nullptr;
+  }
+  Node* concurrent_child(const std::string& name) {
+    for (auto& c : children)
+      if (c->name == name && c->concurrent) return c.get();
+    children.push_back(std::make_unique<Node>());
+    children.back()->name = name;
+    children.back()->concurrent = true;
+    return children.back().get();
   }
   Node* add_child(const std::string& label) {
     children.push_back(std::make_unique<Node>());
@@ -51,8 +60,9 @@ void merge(Node& n, const ProfileEvent& e) {
 }
 
 // Inserts an event below `root` (a step); events must come in order of start time so that a parent scope
-// is in the tree before its children.
-void insert(Node& root, const ProfileEvent& e) {
+// is in the tree before its children. `bounded`: root.start and root.end are the graph run's; a scope outside
+// them (one timed between two runs, such as a checkpoint) is concurrent too.
+void insert(Node& root, const ProfileEvent& e, bool bounded) {
   std::vector<std::string> path = split(e.name);
   if (e.iteration >= 0 && path.size() >= 2 && path[0] == kNewtonScope) path.insert(path.begin() + 1, "iteration " + std::to_string(e.iteration));
   const double end = e.start + e.seconds;
@@ -63,38 +73,36 @@ void insert(Node& root, const ProfileEvent& e) {
     const bool iteration_level = k == 1 && e.iteration >= 0 && path[0] == kNewtonScope;
     if (!next) {
       if (!iteration_level && k == 0) {
-        // The parent system did not run in this step: the scope ran on its own (the writer).
-        Node* n = root.child(e.name);
-        if (!n) n = root.add_child(e.name), n->concurrent = true;
-        merge(*n, e);
+        // The parent system did not run in this step (yet): the scope ran on its own (the writer).
+        merge(*root.concurrent_child(e.name), e);
         return;
       }
       next = at->add_child(path[k]);
       next->synthetic = true;
       next->start = e.start, next->end = end;
     } else if (!next->synthetic && (e.start < next->start - slack || end > next->end + slack)) {
-      Node* n = root.child(e.name);
-      if (!n) n = root.add_child(e.name), n->concurrent = true;
-      merge(*n, e);
+      merge(*root.concurrent_child(e.name), e);
       return;
     }
     if (next->synthetic) next->start = std::min(next->start, e.start), next->end = std::max(next->end, end);
     at = next;
+  }
+  if (at == &root && bounded && (e.start < root.start - slack || end > root.end + slack)) {
+    merge(*root.concurrent_child(e.name), e);
+    return;
   }
   Node* leaf = at->child(path.back());
   if (!leaf) leaf = at->add_child(path.back());
   merge(*leaf, e);
 }
 
-// A synthetic level lasts as long as its children together.
-double settle(Node& n) {
-  double sum = 0.0;
-  for (auto& c : n.children) {
-    const double s = settle(*c);
-    if (!c->concurrent) sum += s;
-  }
-  if (n.synthetic) n.seconds = sum;
-  return n.seconds;
+// A synthetic level spans its children: from the first one's start to the last one's end, the untimed work
+// between them included (an iteration's convergence test and line-search logic, or the time its thread was
+// descheduled between two phases on a loaded machine). The sum of its children would be shorter than that
+// span by those gaps, and the last phases would end after their parent.
+void settle(Node& n) {
+  for (auto& c : n.children) settle(*c);
+  if (n.synthetic) n.seconds = n.end - n.start;
 }
 
 void write_node(std::ostream& os, const Node& n, const std::string& indent) {
@@ -118,16 +126,25 @@ void write_profile_json(std::ostream& os, const std::vector<ProfileRun>& runs, c
                         const std::string& indent) {
   std::vector<const ProfileEvent*> sorted;
   for (const auto& e : events) sorted.push_back(&e);
-  // By start; a scope that starts with its child (same clock reading) first: the longer one.
-  std::stable_sort(sorted.begin(), sorted.end(), [](const ProfileEvent* a, const ProfileEvent* b) {
-    return a->start != b->start ? a->start < b->start : a->seconds > b->seconds;
+  // By start. Of scopes with the same clock reading at their start (some virtual machines' clocks step by
+  // 100 ns), a parent before its child (the shorter name), and phases one after the other in the order they
+  // ran, as recorded (when they ended): the longer one first would put a quick update after the assembly
+  // that followed it.
+  auto depth = [](const ProfileEvent* e) { return std::count(e->name.begin(), e->name.end(), '/'); };
+  std::stable_sort(sorted.begin(), sorted.end(), [&](const ProfileEvent* a, const ProfileEvent* b) {
+    return a->start != b->start ? a->start < b->start : depth(a) < depth(b);
   });
   // Run -1 (the initial state, before the first graph run) becomes "step 0".
   std::vector<Node> steps(runs.size() + 1);
   steps[0].name = "step 0";
-  for (std::size_t r = 0; r < runs.size(); ++r) steps[r + 1].name = "step " + std::to_string(runs[r].step);
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    steps[r + 1].name = "step " + std::to_string(runs[r].step);
+    steps[r + 1].start = runs[r].start, steps[r + 1].end = runs[r].start + runs[r].seconds;
+  }
+  // A run's events lie within its time, once it ended (seconds > 0).
   for (const ProfileEvent* e : sorted)
-    if (e->run >= -1 && e->run < int(runs.size())) insert(steps[std::size_t(e->run + 1)], *e);
+    if (e->run >= -1 && e->run < int(runs.size()))
+      insert(steps[std::size_t(e->run + 1)], *e, e->run >= 0 && runs[std::size_t(e->run)].seconds > 0.0);
 
   const auto flags = os.flags();
   os << std::setprecision(9) << "{\n" << indent << "  \"steps\": [";

@@ -7,12 +7,14 @@
 // "newton/") recorded during iteration k gets the level "iteration k" between the system and itself:
 // newton > iteration 2 > solve > factorize.
 // Iteration 0 is the assembly before the first solve; iteration k holds the k-th solve, the update and
-// the assemblies after it (line-search trials included). Repeated scopes with the same path are merged
-// (calls counts them), as a flame graph merges equal stacks. A scope that started inside a graph run but
-// does not lie inside its parent's time (the VTK writer, which runs while the next step computes) is
-// listed at the step level under its full name with "concurrent": true, so that every child lies within
-// its parent's time. Systems of one step may overlap (probes and output run in parallel), so a step's
-// children may add up to more than the step; below the systems, phases run one after the other.
+// the assemblies after it (line-search trials included); such a level, which no scope timed, spans its
+// children (first start to last end, the untimed work between them included). Repeated scopes with the same
+// path are merged (calls counts them), as a flame graph merges equal stacks. A scope that started inside a
+// graph run but does not lie inside its parent's time (the VTK writer, which runs while the next step
+// computes; a scope timed after the run, between two steps) is listed at the step level under its full name
+// with "concurrent": true, so that every child lies within its parent's time. Systems of one step may
+// overlap (probes and output run in parallel), so a step's children may add up to more than the step; below
+// the systems, phases run one after the other.
 #pragma once
 
 #include <ostream>

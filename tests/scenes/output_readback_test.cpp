@@ -253,9 +253,12 @@ double seconds_of(const Json& node) { return node.at("seconds").number; }
 
 void expect_children_within(const Json& node, const std::string& path, bool sequential) {
   if (!node.has("children")) return;
-  // slack: clock reads of nested scopes on a loaded machine (a parent's stop is not atomic with its
-  // children's), observed up to 6 us; structure errors are off by whole system times.
-  const double begin = node.at("start").number, end = begin + seconds_of(node), slack = 1e-4;
+  // Nested scopes read one monotonic clock, the child's two reads between its parent's, so a child lies
+  // within its parent however the threads are scheduled; an iteration, which no scope times, spans its
+  // phases (the sum of its phases was shorter by the untimed work between them: by microseconds, and by a
+  // whole time slice when the thread was descheduled there on a loaded machine). slack: the profile's own
+  // 1e-7 s and the file's 9 significant digits; structure errors are off by whole phase times.
+  const double begin = node.at("start").number, end = begin + seconds_of(node), slack = 1e-6;
   double sum = 0.0;
   for (const Json& c : node.at("children").array) {
     const std::string name = c.at("name").string;
