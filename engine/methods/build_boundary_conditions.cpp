@@ -82,6 +82,23 @@ const MeshRegion& boundary_group(const SceneSpec& scene, const BodyRegions& regi
   return *region;
 }
 
+void check_traction_support(const SceneSpec& scene, std::size_t k, std::size_t loaded, std::size_t in_region, const std::string& needs) {
+  if (loaded > 0) return;
+  const BoundarySpec& spec = scene.boundaries[k];
+  LOOM_CHECK(in_region > 0, InputError,
+             spec.region_where << ": error: boundary[" << k << "].region." << (spec.group.empty() ? "box" : "group")
+                               << ": a traction needs " << needs << ", and this region holds none");
+  const bool plane = scene.scene.dimension == 2;
+  const Vec2 d = spec.normal ? *spec.normal : Vec2(0.0, 0.0);
+  std::ostringstream os;
+  os << spec.normal_where << ": error: boundary[" << k << "].region.normal: a traction needs " << needs
+     << ", and this region holds none facing region.normal: its filter removed all " << in_region << " of the region's boundary "
+     << (plane ? "edges" : "faces") << " (none has its outward normal within 45 degrees of (" << d.x() << ", " << d.y();
+  if (!plane) os << ", " << spec.normal_z;
+  os << "))";
+  throw InputError(os.str());
+}
+
 namespace {
 // Cells with a node on each side (tri6, quad9); a quad9 centre node is never on the boundary.
 bool quadratic(const Cells& cb) { return cb.stride == 6 || cb.stride == 9; }
@@ -144,6 +161,15 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
     }
   }
   auto in_region = [&](const BoundarySpec& spec, Index i) { return member[std::size_t(&spec - scene.boundaries.data())][std::size_t(i)] != 0; };
+  // region.normal: the edge's outward normal in the reference configuration. Cells are counter-clockwise
+  // (generators, mesh files and remeshes alike), and a boundary edge a -> b runs as in its cell, so the body lies
+  // on its left and the outward normal is the edge turned clockwise, (y_b - y_a, -(x_b - x_a)).
+  auto facing = [&](const BoundarySpec& spec, const Edge& e) {
+    const std::optional<Vec2> d = region_normal<2>(spec);
+    if (!d) return true;
+    const Vec2 t = nodes.X[e.b] - nodes.X[e.a];
+    return faces_direction<2>(Vec2(t.y(), -t.x()), *d);
+  };
 
   // Seed 000 eq 24: in PFEM, the mid-nodes of boundary edges that carry a condition are tied to the
   // midpoint of their corners (both components), instead of being prescribed or loaded on their own.
@@ -151,8 +177,9 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
   if (tie_mid_nodes)
     for (const BoundarySpec& spec : scene.boundaries) {
       if (!spec.has_traction && !spec.displacement.x && !spec.displacement.y) continue;
+      // With region.normal (a traction alone, the loader sees to it) only the edges that carry the traction.
       for (const Edge& e : edges)
-        if (e.mid != kNoIndex && in_region(spec, e.a) && in_region(spec, e.b)) tied[e.mid] = {e.a, e.b};
+        if (e.mid != kNoIndex && in_region(spec, e.a) && in_region(spec, e.b) && facing(spec, e)) tied[e.mid] = {e.a, e.b};
     }
   for (const auto& [mid, corner] : tied)
     for (int d = 0; d < 2; ++d) bc.ties.push_back({mid * dofs_per_node + d, {corner[0] * dofs_per_node + d, corner[1] * dofs_per_node + d}});
@@ -182,13 +209,14 @@ BoundaryConditions<2> build_boundary_conditions(const SceneSpec& scene, const No
       if (spec.traction.x) expr[0] = add_expression(bc, *spec.traction.x);
       if (spec.traction.y) expr[1] = add_expression(bc, *spec.traction.y);
       if (frozen_tractions) continue;
-      std::size_t n_edges = 0;
-      for (const auto& e : edges)
-        if (inside(e.a) && inside(e.b)) bc.traction_edges.push_back({e.a, e.b, tied.count(e.mid) ? kNoIndex : e.mid, expr}), ++n_edges;
-      LOOM_CHECK(n_edges > 0, InputError,
-                 spec.region_where << ": error: boundary[" << k << "].region." << (spec.group.empty() ? "box" : "group")
-                                   << ": a traction needs boundary edges with both "
-                                   << "end nodes in the region, and this region holds none");
+      std::size_t n_edges = 0, n_in_region = 0;  // loaded; in the region, before region.normal's filter
+      for (const auto& e : edges) {
+        if (!inside(e.a) || !inside(e.b)) continue;
+        ++n_in_region;
+        if (!facing(spec, e)) continue;
+        bc.traction_edges.push_back({e.a, e.b, tied.count(e.mid) ? kNoIndex : e.mid, expr}), ++n_edges;
+      }
+      check_traction_support(scene, k, n_edges, n_in_region, "boundary edges with both end nodes in the region");
       for (Index e : expr)
         if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();
     }

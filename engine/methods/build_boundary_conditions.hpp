@@ -5,8 +5,11 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/linalg/dof_map.hpp"
@@ -45,6 +48,30 @@ std::vector<DofKind> dof_kinds(const BoundaryConditions<D>& bc, const std::vecto
 
 // The physical group of the body's mesh file that boundary k's region names; InputError listing the groups if none.
 const MeshRegion& boundary_group(const SceneSpec& scene, const BodyRegions& regions, std::size_t k);
+
+// boundary[].region.normal: whether a boundary edge (3D: face) whose outward normal is `outward` faces direction `d`,
+// that is lies within 45 degrees of it (n . d / (|n| |d|) >= cos 45 degrees, with a relative 1e-12 of slack so that
+// a face at exactly 45 degrees counts whatever the rounding). Neither vector need be of unit length; a zero
+// one faces nothing. The one test of the four traction builders (fem and mpm, 2D and 3D).
+template <int D>
+bool faces_direction(const Vec<D>& outward, const Vec<D>& d) {
+  const double scale = outward.norm() * d.norm();
+  return scale > 0.0 && outward.dot(d) >= (std::sqrt(0.5) - 1e-12) * scale;
+}
+
+// The direction of boundary[].region.normal in D components, or nothing when the region has none.
+template <int D>
+std::optional<Vec<D>> region_normal(const BoundarySpec& spec) {
+  if (!spec.normal) return std::nullopt;
+  if constexpr (D == 2) return Vec<D>(*spec.normal);
+  else return Vec<D>(spec.normal->x(), spec.normal->y(), spec.normal_z);
+}
+
+// The InputError of boundary k's traction when no boundary edge (3D: face) carries it: `needs` says which a traction
+// needs ("boundary edges with both end nodes in the region"), `in_region` how many of those the region holds before
+// region.normal's filter. With none, the message names the region's box or group; else region.normal, which
+// removed them all. Returns when `loaded` > 0.
+void check_traction_support(const SceneSpec& scene, std::size_t k, std::size_t loaded, std::size_t in_region, const std::string& needs);
 
 // The prescribed dofs found so far, and the boundary that prescribed each (for the message when two disagree).
 struct PrescribedDofs {

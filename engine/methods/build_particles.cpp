@@ -7,6 +7,7 @@
 #include "engine/mesh/boundary_edges.hpp"
 #include "engine/mesh/particle_generators.hpp"
 #include "engine/mesh/triangle_rules.hpp"
+#include "engine/methods/build_boundary_conditions.hpp"
 #include "engine/methods/build_mesh.hpp"
 
 namespace loom {
@@ -98,10 +99,15 @@ void build_traction_points(const SceneSpec& scene, Points<2>& points, BoundaryCo
       bc.expressions.emplace_back((*comps[d])->text, where.str());
       expr[std::size_t(d)] = Index(bc.expressions.size() - 1);
     }
-    std::size_t n_edges = 0;
+    // region.normal: the body mesh's triangles are counter-clockwise, so the outward normal of a boundary edge
+    // a -> b (as in its triangle) is (x_b - x_a) turned clockwise.
+    const std::optional<Vec2> direction = region_normal<2>(spec);
+    std::size_t n_edges = 0, n_in_region = 0;  // loaded; in the region, before region.normal's filter
     for (const auto& e : boundary_edges(mesh.triangles, 3)) {
       const Vec2 &xa = mesh.X[std::size_t(e.a)], &xb = mesh.X[std::size_t(e.b)];
       if (!inside(xa) || !inside(xb)) continue;
+      ++n_in_region;
+      if (direction && !faces_direction<2>(Vec2(xb.y() - xa.y(), xa.x() - xb.x()), *direction)) continue;
       ++n_edges;
       for (double si : s) {
         X.push_back((1 - si) * xa + si * xb);
@@ -110,9 +116,7 @@ void build_traction_points(const SceneSpec& scene, Points<2>& points, BoundaryCo
         bc.traction_point_expression.push_back(expr);
       }
     }
-    LOOM_CHECK(n_edges > 0, InputError,
-               spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary edges of the body mesh with "
-                                 << "both end nodes in the region, and this region holds none");
+    check_traction_support(scene, k, n_edges, n_in_region, "boundary edges of the body mesh with both end nodes in the region");
     if (expr[0] != kNoIndex || expr[1] != kNoIndex) bc.has_loads = true;
   }
   points.resize(Index(X.size()));

@@ -201,15 +201,19 @@ BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const
     std::array<Index, 3> expr{kNoIndex, kNoIndex, kNoIndex};
     for (int d = 0; d < 3; ++d)
       if (spec.traction[d]) expr[std::size_t(d)] = add_expression(bc, *spec.traction[d]);
-    std::size_t n_faces = 0;
-    for (TractionFace f : faces)
-      if (in[std::size_t(f.nodes[0])] && in[std::size_t(f.nodes[1])] && in[std::size_t(f.nodes[2])]) {
-        f.expression = expr;
-        bc.traction_faces.push_back(f), ++n_faces;
-      }
-    LOOM_CHECK(n_faces > 0, InputError,
-               spec.region_where << ": error: boundary[" << k << "].region." << by
-                                 << ": a traction needs boundary faces with every corner in the region, and this region holds none");
+    // region.normal: the faces' corners run counter-clockwise seen from outside (boundary_faces of positively
+    // oriented tetrahedra), so (x1 - x0) x (x2 - x0) is the outward normal, in the reference configuration.
+    const std::optional<Vec3> direction = region_normal<3>(spec);
+    std::size_t n_faces = 0, n_in_region = 0;  // loaded; in the region, before region.normal's filter
+    for (TractionFace f : faces) {
+      if (!in[std::size_t(f.nodes[0])] || !in[std::size_t(f.nodes[1])] || !in[std::size_t(f.nodes[2])]) continue;
+      ++n_in_region;
+      const Vec3 &x0 = nodes.X[f.nodes[0]], &x1 = nodes.X[f.nodes[1]], &x2 = nodes.X[f.nodes[2]];
+      if (direction && !faces_direction<3>((x1 - x0).cross(x2 - x0), *direction)) continue;
+      f.expression = expr;
+      bc.traction_faces.push_back(f), ++n_faces;
+    }
+    check_traction_support(scene, k, n_faces, n_in_region, "boundary faces with every corner in the region");
     for (Index e : expr)
       if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();
   }

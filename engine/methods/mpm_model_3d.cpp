@@ -91,12 +91,17 @@ void build_traction_points_3d(const SceneSpec& scene, Points<3>& points, Boundar
     std::array<Index, 3> expr{kNoIndex, kNoIndex, kNoIndex};
     for (int d = 0; d < 3; ++d)
       if (spec.traction[d]) expr[std::size_t(d)] = add_expression(bc, *spec.traction[d]), bc.has_loads = true;
-    std::size_t n_faces = 0;
+    // region.normal: boundary_faces orients every face outward ((x1 - x0) x (x2 - x0) points out of the body).
+    const std::optional<Vec3> direction = region_normal<3>(spec);
+    std::size_t n_faces = 0, n_in_region = 0;  // loaded; in the region, before region.normal's filter
     for (const BoundaryFace& f : boundary_faces(mesh.tets)) {
       if (!inside(f.nodes[0]) || !inside(f.nodes[1]) || !inside(f.nodes[2])) continue;
-      ++n_faces;
+      ++n_in_region;
       const Vec3 &x0 = mesh.X[std::size_t(f.nodes[0])], &x1 = mesh.X[std::size_t(f.nodes[1])], &x2 = mesh.X[std::size_t(f.nodes[2])];
-      const double area = 0.5 * (x1 - x0).cross(x2 - x0).norm();
+      const Vec3 outward = (x1 - x0).cross(x2 - x0);
+      if (direction && !faces_direction<3>(outward, *direction)) continue;
+      ++n_faces;
+      const double area = 0.5 * outward.norm();
       for (const TrianglePoint& q : rule) {
         X.push_back(q.l[0] * x0 + q.l[1] * x1 + q.l[2] * x2);
         weight.push_back(q.w * area);
@@ -104,9 +109,7 @@ void build_traction_points_3d(const SceneSpec& scene, Points<3>& points, Boundar
         bc.traction_point_expression.push_back(expr);
       }
     }
-    LOOM_CHECK(n_faces > 0, InputError,
-               spec.region_where << ": error: boundary[" << k << "].region.box: a traction needs boundary faces of the body mesh with "
-                                 << "every corner in the region, and this region holds none");
+    check_traction_support(scene, k, n_faces, n_in_region, "boundary faces of the body mesh with every corner in the region");
   }
   points.resize(Index(X.size()));
   for (Index q = 0; q < points.X.size(); ++q) {

@@ -340,7 +340,34 @@ class Loader {
     b.outside = t.boolean("outside");
     if (t.table("displacement").present() && !b.displacement.any())
       t.error("displacement", s.scene.dimension == 3 ? "give at least one component (x, y or z)" : "give at least one component (x or y)");
+    if (region.has("normal")) read_region_normal(s.scene.dimension, t, region, b);
     s.boundaries.push_back(b);
+  }
+
+  // boundary[].region.normal: a direction that picks, out of the region's boundary edges (3D: faces), those its
+  // traction acts on. Conditions on nodes (displacement, pressure, outside) would still act on every node of the
+  // region, whatever the direction says: such a boundary is refused rather than half-filtered.
+  void read_region_normal(int dimension, const TableReader& t, const TableReader& region, BoundarySpec& b) {
+    Vec3 n(region.component("normal", 0), region.component("normal", 1), dimension == 3 ? region.component("normal", 2) : 0.0);
+    const double largest = n.cwiseAbs().maxCoeff();
+    const std::string selects = "region.normal selects the boundary edges (3D: faces) a traction acts on";
+    const bool displacement = t.table("displacement").present();
+    if (!(largest > 0.0)) {
+      region.error("normal", "the direction must not be zero: " + selects + ", those whose outward normal lies within 45 degrees of it");
+    } else if (!b.has_traction) {
+      region.error("normal", selects + ", and this boundary has no traction" +
+                                 (displacement ? "; its displacement acts on the region's nodes whatever their normal: leave normal out"
+                                               : "; a displacement acts on the region's nodes: leave normal out"));
+    } else if (displacement || b.pressure || b.outside) {
+      const std::string what = displacement ? "displacement" : b.pressure ? "pressure" : "outside = true";
+      region.error("normal", selects + ", but this boundary's " + what + " acts on every node of the region whatever the normal: "
+                                       "give the traction a [[boundary]] of its own");
+    } else {
+      n = (n / largest).normalized();  // scaled first: a finite vector of huge numbers has an infinite norm
+      b.normal = Vec2(n.x(), n.y());
+      b.normal_z = n.z();
+      b.normal_where = region.where("normal");
+    }
   }
 
   void read_output(SceneSpec& s) {

@@ -183,6 +183,11 @@ struct BoundarySpec {
   double box_min_z = 0.0, box_max_z = 0.0;  // 3D
   std::string group;  // instead of the box: a physical group of the body's mesh file
   SourceRef region_where;
+  // region.normal (with a traction only): the traction acts on the region's boundary edges (3D: faces) whose outward
+  // normal lies within 45 degrees of this direction (stored as a unit vector, its z in normal_z in 3D scenes).
+  std::optional<Vec2> normal;
+  double normal_z = 0.0;
+  SourceRef normal_where;
   VectorExpression displacement;
   VectorExpression traction;
   bool has_traction = false;

@@ -261,13 +261,19 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("boundary[].region.group", K::string,
                   "Instead of box: a physical group of the body's mesh file (a curve, a point or a surface); its nodes, and the mid-node "
                   "of every edge whose two corners are in it."));
+  s.push_back(key("boundary[].region.normal", K::vec2,
+                  "A direction (any length, not zero; 3 numbers in 3D): the region's boundary edges (3D: faces) whose outward normal lies "
+                  "within 45 degrees of this direction; for tractions (e.g. [1, 0] loads only the end x = L of a beam with a box across "
+                  "its whole end, not the top and bottom edges in the box). A boundary with normal takes a traction and no displacement, "
+                  "pressure or outside, which act on every node of the region: give those a [[boundary]] of their own."));
   s.push_back(key("boundary[].displacement", K::table,
                   "Prescribed displacement; a component left out stays free (a roller). Method mpm: each step moves the region's "
                   "grid nodes by g(t_n+1) - g(t_n), so g must vanish at t = 0 (the particles start undisplaced)."));
   s.push_back(key("boundary[].displacement.x", K::expression, "Prescribed u_x." + expr));
   s.push_back(key("boundary[].displacement.y", K::expression, "Prescribed u_y." + expr));
   s.push_back(key("boundary[].displacement.z", K::expression, "Prescribed u_z (3D)." + expr));
-  s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges ([Schewe 2024] eq 8)."));
+  s.push_back(key("boundary[].traction", K::table, "Dead-load traction per unit reference length on the region's boundary edges ([Schewe 2024] eq 8; "
+                  "with region.normal, on those facing it)."));
   s.push_back(key("boundary[].traction.x", K::expression, "x component." + expr).by_default("0"));
   s.push_back(key("boundary[].traction.y", K::expression, "y component." + expr).by_default("0"));
   s.push_back(key("boundary[].traction.z", K::expression, "z component (3D; per unit reference area on the region's boundary faces)." + expr).by_default("0"));
