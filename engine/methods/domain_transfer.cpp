@@ -6,6 +6,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/methods/build_domains.hpp"
+#include "engine/methods/new_triangle_mass.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 #include "systems/map/map_state.hpp"
 #include "systems/update/commit_domains.hpp"
@@ -101,81 +102,19 @@ DomainTransferStats transfer_domains(const DomainSnapshot& old, const Nodes<2>& 
       else is_new[b][std::size_t(t)] = 1;
     }
   }
-  auto area_n = [&](const Cells& c, Index t) {
-    return signed_area(nodes.position_n(c.node(t, 0)), nodes.position_n(c.node(t, 1)), nodes.position_n(c.node(t, 2)));
+  // A_0 = A_n / J_e, J_e the mean nodal J of the corners: every new triangle of a static run (the spec's reading of eqs
+  // 42, 48), and in a dynamic run the new material that fills a gap between two surfaces that met (it held no mass).
+  auto from_nodal_jacobian = [&](Cells& c, Index t) {
+    const double J_e = (nodes.J_node[c.node(t, 0)] + nodes.J_node[c.node(t, 1)] + nodes.J_node[c.node(t, 2)]) / 3.0;
+    c.measure[t] = signed_area(nodes.position_n(c.node(t, 0)), nodes.position_n(c.node(t, 1)), nodes.position_n(c.node(t, 2))) / J_e;
   };
-  if (density) {
-    // Mass kept: each particle's lumped mass M_a (of the old mesh, carried through any change of the particle set)
-    // less what its surviving triangles still give it, D_a = M_a - sum_kept rho A_0 / 3 >= 0, is what its new
-    // triangles must give it: a mass per current area r_a = D_a / sum_new A_n / 3 at each corner, and sum over the
-    // new triangles of A_n (r_a + r_b + r_c) / 3 = sum_a D_a: the body's mass is unchanged.
-    auto fills_gap = [&](std::size_t b, Index t) {
-      return gap_cells && b < gap_cells->size() && std::size_t(t) < (*gap_cells)[b].size() && (*gap_cells)[b][std::size_t(t)];
-    };
-    std::vector<double> kept(std::size_t(nodes.size()), 0.0), fresh_area(std::size_t(nodes.size()), 0.0);
-    for (std::size_t b = 0; b < cells.size(); ++b)
-      for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
-        for (int a = 0; a < 3 && !fills_gap(b, t); ++a) {
-          const std::size_t i = std::size_t(cells[b].node(t, a));
-          if (is_new[b][std::size_t(t)]) fresh_area[i] += area_n(cells[b], t) / 3.0;
-          else kept[i] += (*density)[std::size_t(cells[b].body[t])] * cells[b].measure[t] / 3.0;
-        }
-    std::vector<double> rate(std::size_t(nodes.size()), 0.0);
-    for (std::size_t i = 0; i < rate.size(); ++i)
-      if (fresh_area[i] > 0.0) rate[i] = std::max(0.0, nodes.lumped_mass[Index(i)] - kept[i]) / fresh_area[i];
-    // The new triangles that share edges form patches (an edge flip, an inflow strip, the region of a removed
-    // particle); each patch takes its corners' shares, sum A_n (r_a + r_b + r_c) / 3, spread at a uniform density,
-    // so that a patch replacing uniform material gets that material's density back (a per-corner share would not).
-    std::vector<std::pair<std::size_t, Index>> fresh;  // (block, cell) of the new triangles that take a share
-    for (std::size_t b = 0; b < cells.size(); ++b)
-      for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t) {
-        const Cells& c = cells[b];
-        if (!is_new[b][std::size_t(t)]) continue;
-        if (fills_gap(b, t)) {
-          cells[b].measure[t] = area_n(c, t) / ((nodes.J_node[c.node(t, 0)] + nodes.J_node[c.node(t, 1)] + nodes.J_node[c.node(t, 2)]) / 3.0);
-          continue;
-        }
-        fresh.emplace_back(b, t);
-      }
-    std::vector<std::size_t> root(fresh.size());
-    for (std::size_t k = 0; k < fresh.size(); ++k) root[k] = k;
-    auto find = [&](std::size_t k) {
-      while (root[k] != k) k = root[k] = root[root[k]];
-      return k;
-    };
-    std::map<std::pair<Index, Index>, std::size_t> by_edge;
-    for (std::size_t k = 0; k < fresh.size(); ++k) {
-      const Cells& c = cells[fresh[k].first];
-      for (int a = 0; a < 3; ++a) {
-        const Index u = c.node(fresh[k].second, a), v = c.node(fresh[k].second, (a + 1) % 3);
-        const auto [it, first] = by_edge.emplace(std::make_pair(std::min(u, v), std::max(u, v)), k);
-        if (!first) root[find(k)] = find(it->second);
-      }
-    }
-    std::vector<double> patch_mass(fresh.size(), 0.0), patch_area(fresh.size(), 0.0);
-    for (std::size_t k = 0; k < fresh.size(); ++k) {
-      const Cells& c = cells[fresh[k].first];
-      const Index t = fresh[k].second;
-      const double A = area_n(c, t);
-      patch_mass[find(k)] += A * (rate[std::size_t(c.node(t, 0))] + rate[std::size_t(c.node(t, 1))] + rate[std::size_t(c.node(t, 2))]) / 3.0;
-      patch_area[find(k)] += A;
-    }
-    for (std::size_t k = 0; k < fresh.size(); ++k) {
-      const Cells& c = cells[fresh[k].first];
-      const Index t = fresh[k].second;
-      const std::size_t p = find(k);
-      cells[fresh[k].first].measure[t] = area_n(c, t) * (patch_mass[p] / patch_area[p]) / (*density)[std::size_t(c.body[t])];
-    }
-  } else {
-    // The volume from the particles' nodal J: A_0 = A_n / J_e (the spec's reading of eqs 42, 48).
-    for (std::size_t b = 0; b < cells.size(); ++b)
-      for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
-        if (is_new[b][std::size_t(t)]) {
-          const Cells& c = cells[b];
-          const double J_e = (nodes.J_node[c.node(t, 0)] + nodes.J_node[c.node(t, 1)] + nodes.J_node[c.node(t, 2)]) / 3.0;
-          cells[b].measure[t] = area_n(c, t) / J_e;
-        }
-  }
+  auto fills_gap = [&](std::size_t b, Index t) {
+    return gap_cells && b < gap_cells->size() && std::size_t(t) < (*gap_cells)[b].size() && (*gap_cells)[b][std::size_t(t)];
+  };
+  for (std::size_t b = 0; b < cells.size(); ++b)
+    for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
+      if (is_new[b][std::size_t(t)] && (!density || fills_gap(b, t))) from_nodal_jacobian(cells[b], t);
+  if (density) share_mass_to_new_triangles(old, nodes, cells, is_new, *density, gap_cells);  // the mass kept
   // Domains: rebuilt, then their history.
   edges.clear();
   build_domains(nodes, cells, j_projection, edges);

@@ -3,10 +3,10 @@
 //  - a new one takes the isochoric part of the nearest old domain's b^e (closest midpoint, CPM),
 //    b_bar = (det b^e)^(-1/3) b^e, and the volumetric part from the particles' nodal J (eq 56):
 //    b^e = (J^k)^(2/3) b_bar, J^k = the mean of J^l over the domain's pressure nodes (an edge's two ends).
-//  - a triangle keeps its reference area if it survives. A new one, in a dynamic run (lumped masses), gets its share
-//    of the mass its corners lost with their old triangles, so that the body's mass stays what it was (transfer_domains
-//    below), and a new domain takes its volume ratio from its triangles, sum A_n / sum A_0, so that its b^e agrees
-//    with the mass it holds; without lumped masses (static runs) a new triangle gets A_n / J_e with J_e the mean nodal
+//  - a triangle keeps its reference area if it survives. A new one, in a dynamic run (lumped masses), gets the mass of
+//    the removed triangles whose region it covers (and a share of what its corners lost otherwise), so that the
+//    body's mass stays what it was (new_triangle_mass.hpp), and a new domain takes its volume ratio from its
+//    triangles, sum A_n / sum A_0, so that its b^e agrees with the mass it holds; without lumped masses (static runs) a new triangle gets A_n / J_e with J_e the mean nodal
 //    J of its corners and a new domain the nodal J of its ends (the spec's reading of eqs 42, 48 and 56, ambiguity
 //    21). docs/free_surface.md shows why the nodal reading lets the mass drift in a flow that remeshes every step.
 // The spec applies the projection to every edge at every remesh; loom keeps surviving edges as they are, so

@@ -182,7 +182,8 @@ void FemRunT<D>::build_graph() {
     const auto commit_edges = g.add_system("commit_domains", &commit_domains, m_.cells, m_.nodes, m_.quad, m_.edges);
     g.run_if(commit_edges, &status_, [this] { return status_.converged; });
   }
-  const auto probes = g.add_node("probes", {{&m_.nodes, &m_.cells, &m_.quad, &m_.materials, &m_.system, &m_.bc}, {&probe_writer_}}, [this] { probes_node(); });
+  const auto probes = g.add_node("probes", {{&m_.nodes, &m_.cells, &m_.quad, &m_.edges, &m_.materials, &m_.system, &m_.bc}, {&probe_writer_}},
+                                 [this] { probes_node(); });
   g.run_if(probes, &status_, [this] { return status_.converged && ctx_.step_end; });
   const auto output = g.add_node("output", {{&m_.nodes, &m_.cells, &m_.quad, &m_.materials}, {&writer_}}, [this] { output_node(); },
                                  "snapshot here; the VTK file is written while the next step runs");
@@ -239,7 +240,7 @@ void FemRunT<D>::probes_node() {
   if constexpr (D == 2)
     if (!m_.walls.empty()) walls = wall_results(m_.walls, m_.node_body, m_.nodes, m_.system.dofs);
   evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations,
-                  last_remesh_.stats(), walls, probe_values_);
+                  last_remesh_.stats(), walls, probe_values_, &m_.edges);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
 

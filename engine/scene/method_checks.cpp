@@ -1,5 +1,7 @@
 #include "engine/scene/method_checks.hpp"
 
+#include "engine/store/cells.hpp"
+
 namespace loom {
 
 void check_method_support(const SceneSpec& s, const TableReader& root, Diagnostics& diag) {
@@ -19,16 +21,18 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     }
     for (std::size_t b = 0; b < boundaries.size() && b < s.boundaries.size(); ++b)
       if (s.boundaries[b].pressure) boundaries[b].error("pressure", "a prescribed pressure needs method = \"mpm\" with element = \"p1p1_up\"");
-    // Energy probes (systems/output/mesh_energy.hpp): displacement formulations, hyperelastic materials, the
-    // lumped mass for the kinetic energy.
+    // Energy probes (systems/output/mesh_energy.hpp): displacement formulations with hyperelastic materials, the
+    // smoothed elements with theirs (the domains' b^e), the lumped mass for the kinetic energy.
     for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k) {
       if (s.probes[k].kind != ProbeKind::energy) continue;
       for (const BodySpec& b : s.bodies) {
         const MaterialModel model = s.materials[std::size_t(b.material)].model;
+        if (integrates_on_domains(b.element)) continue;  // hencky_perzyna or linear_elastic, as the elements require
         if (b.element != Formulation::p1 && b.element != Formulation::tri6 && b.element != Formulation::quad9 &&
             b.element != Formulation::p1p1_uphi)
           probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +
-                                      " take the elements p1, tri6, quad9 (tet10) and p1p1_uphi (body \"" + b.name + "\" is none of them)");
+                                      " take the elements p1, tri6, quad9 (tet10), p1p1_uphi, es_up, es_u, fem_up and fem_u (body \"" + b.name +
+                                      "\" is none of them)");
         else if (b.element == Formulation::p1p1_uphi && s.scene.method != Method::fem)
           probes[k].error("kind", "energy probes of p1p1_uphi bodies need method fem (the reference simplex of a remeshed cell is not its own)");
         else if (model != MaterialModel::neo_hooke && model != MaterialModel::linear_elastic)

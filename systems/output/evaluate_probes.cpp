@@ -184,7 +184,8 @@ template <int D>
 void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
                      const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
-                     const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values) {
+                     const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values,
+                     const std::vector<Edges<2>>* domains) {
   values.assign(plan.probes.size(), 0.0);
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
     const ProbeSpec& p = plan.probes[k];
@@ -258,7 +259,7 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         break;
       }
       case ProbeKind::energy: {  // displacement formulations and hyperelastic materials (the loader checks)
-        const MeshEnergy e = mesh_energy(materials, nodes, cells, quad, bc);
+        const MeshEnergy e = mesh_energy(materials, nodes, cells, quad, bc, domains);
         values[k] = p.energy == EnergyPart::kinetic     ? e.kinetic
                     : p.energy == EnergyPart::elastic   ? e.elastic
                     : p.energy == EnergyPart::potential ? e.potential
@@ -303,9 +304,11 @@ template ProbePlan plan_probes<2>(const SceneSpec&, const Nodes<2>&, const std::
 template ProbePlan plan_probes<3>(const SceneSpec&, const Nodes<3>&, const std::vector<Cells>&, const std::vector<Index>&);
 template void evaluate_probes<2>(const StepContext&, const ProbePlan&, const std::vector<BodyMaterial>&, const Nodes<2>&,
                                  const std::vector<Cells>&, const std::vector<QuadPoints<2>>&, const LinearSystem&,
-                                 const BoundaryConditions<2>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&);
+                                 const BoundaryConditions<2>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&,
+                                 const std::vector<Edges<2>>*);
 template void evaluate_probes<3>(const StepContext&, const ProbePlan&, const std::vector<BodyMaterial>&, const Nodes<3>&,
                                  const std::vector<Cells>&, const std::vector<QuadPoints<3>>&, const LinearSystem&,
-                                 const BoundaryConditions<3>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&);
+                                 const BoundaryConditions<3>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&,
+                                 const std::vector<Edges<2>>*);
 
 }  // namespace loom

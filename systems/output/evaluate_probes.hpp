@@ -32,6 +32,7 @@
 #include "engine/linalg/linear_system.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"
+#include "engine/store/edges.hpp"
 #include "engine/store/nodes.hpp"
 #include "engine/store/quad_points.hpp"
 #include "engine/store/walls.hpp"
@@ -77,7 +78,8 @@ template <int D>
 void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
                      const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
-                     const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values);
+                     const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values,
+                     const std::vector<Edges<2>>* domains = nullptr);
 
 double stress_component(const Mat3& sigma, StressComponent c);
 

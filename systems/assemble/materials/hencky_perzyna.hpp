@@ -45,6 +45,15 @@ struct HenckyPerzyna {
   double tau0 = std::numeric_limits<double>::infinity();  // shear yield stress; infinite: Hencky elastic
   double viscosity = 0.0;                                  // Bingham plastic viscosity mu
 
+  // The stored energy per unit reference volume of an elastic state b^e (eq 19): G sum_A (dev eps_A)^2 + K/2 (ln J)^2,
+  // eps_A = 1/2 ln of b^e's eigenvalues (G sum eps_A^2 + 1/2 (K - 2G/3) (ln J)^2 written with the deviator).
+  double energy(const Mat3& be) const {
+    const Eigen::SelfAdjointEigenSolver<Mat3> eig(be, Eigen::EigenvaluesOnly);
+    const Vec3 eps = 0.5 * eig.eigenvalues().array().log().matrix();
+    const double theta = eps.sum();
+    return G * (eps - Vec3::Constant(theta / 3.0)).squaredNorm() + 0.5 * K * theta * theta;
+  }
+
   // The return map from the incremental deformation f = F F_n^-1 and the converged b^e_n over dt. false if
   // det f <= 0 (the state does not exist).
   bool update(const Mat3& f, const Mat3& be_n, double dt, bool deviatoric, bool tangent, HistoryResponse& out) const {
