@@ -169,17 +169,12 @@ int run(const Args& a) {
     return 1;
   }
   if (summary.interrupted_by || summary.stopped) {
-    const bool checkpointed = summary.stopped || scene.output.checkpoint_every > 0;
+    // A run that stops early always writes the checkpoint of its last step (and that step as a frame).
     std::cerr << "loom: " << (summary.stopped ? "stopped as asked" : std::string("interrupted by ") + loom::signal_name(summary.interrupted_by))
               << " after step " << summary.last_converged_step << " of " << scene.time.steps << " (t = " << summary.last_converged_time
-              << "); output in " << options.output_directory;
-    if (checkpointed) {
-      std::cerr << "; continue with: " << a.program << " run " << a.scene;
-      for (const auto& set : a.sets) std::cerr << " --set '" << set << "'";
-      std::cerr << " --restart " << options.output_directory << "\n";
-    }
-    else
-      std::cerr << "; no checkpoint (set [output] checkpoint_every to be able to continue a run)\n";
+              << "); output in " << options.output_directory << "; continue with: " << a.program << " run " << a.scene;
+    for (const auto& set : a.sets) std::cerr << " --set '" << set << "'";
+    std::cerr << " --restart " << options.output_directory << "\n";
     return summary.stopped ? 0 : 128 + summary.interrupted_by;
   }
   if (!a.quiet && summary.settled) {

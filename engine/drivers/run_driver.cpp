@@ -27,7 +27,6 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
   callbacks.step_done = [&](const StepContext& c, const StepStatus& st) {
     completed = c.step, completed_time = c.t;
     progress.update(c.step, c.t, st.step_iterations);
-    if (schedule.checkpoint_every > 0 && c.step % schedule.checkpoint_every == 0) checkpoint(c.step);
   };
   callbacks.cut_back = [&](const StepContext& c, const StepStatus& st) {
     if (schedule.log) {
@@ -35,7 +34,13 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
       *schedule.log << "step " << c.step << " (t = " << c.t << ", dt = " << c.dt << "): " << st.failure << "; cutting the step back\n";
     }
   };
-  callbacks.settled = hooks.settled;
+  // The periodic checkpoint is written after time.stop_when has looked at the step, so that it holds the window
+  // that the step's reading entered.
+  callbacks.settled = [&](const StepContext& c) {
+    if (hooks.settled && hooks.settled(c)) return true;
+    if (schedule.checkpoint_every > 0 && c.step % schedule.checkpoint_every == 0) checkpoint(c.step);
+    return false;
+  };
   callbacks.step_size = hooks.step_size;
   callbacks.end_time = hooks.end_time;
   TimeLoopResult result;
@@ -59,10 +64,14 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
                            TimeLoopRange{schedule.first_step, schedule.stop_after});
     progress.finish();
     const bool early = result.interrupted_by != 0 || result.stopped;
-    if (early && (schedule.checkpoint_every > 0 || result.stopped)) checkpoint(result.last_converged_step);
+    // A run stopped by a signal can be continued whatever checkpoint_every says: it is checkpointed before its
+    // last frame, so that the continued run's collection is that of a run that never stopped.
+    if (early) checkpoint(result.last_converged_step);
+    // Every end writes the state it reached as a frame, unless the last frame is that state: a failed run its
+    // last converged state (inside the failed step after converged sub-steps), a run that settles, ends at
+    // time.end between frames, stops or is interrupted its last step.
     if (!result.completed && !early) hooks.write_last_converged_state(result.failed_step, result.last_converged_time);
-    // A run that settles ends between frames: its final state is the one a user opens first.
-    if (result.settled) hooks.write_last_converged_state(result.last_converged_step, ctx.t);
+    else hooks.write_last_converged_state(result.last_converged_step, result.last_step_time);
   } catch (const RunError& e) {
     stop(e);
   }

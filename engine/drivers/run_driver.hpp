@@ -4,6 +4,7 @@
 // RunError outside the time loop (frame 0, the writer) ends the run as an anomaly, reported like a step
 // that stopped. Checkpoints are written every `checkpoint_every` steps and when the run stops early (a
 // signal, or `stop_after`); a restarted run starts after the checkpoint's step without writing step 0.
+// Every end leaves the state it reached as the last frame (completed, settled, stopped, interrupted, failed).
 #pragma once
 
 #include <functional>
@@ -29,8 +30,8 @@ struct RunSchedule {
 
 struct RunHooks {
   std::function<void()> write_initial_state;
-  // After a failed or settled run: write the last converged state, reached at `last_converged_time` within or
-  // before step `step` (the failed step, or the one that settled), if the recipe writes frames and has not
+  // At the end of every run: write the last converged state, reached at `last_converged_time` within or
+  // before step `step` (the failed step, or the last completed one), if the recipe writes frames and has not
   // written that one.
   std::function<void(int step, double last_converged_time)> write_last_converged_state;
   std::function<void()> wait_for_writer;

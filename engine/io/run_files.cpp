@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -49,12 +50,13 @@ void prepare_output_directory(const std::string& directory, const std::string& o
   std::remove(probe.c_str());
 }
 
-void remove_frames(const std::string& directory, const std::string& stem, int after_step) {
+void remove_frames(const std::string& directory, const std::string& stem, int after_step, const std::vector<std::string>& kept) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(directory, ec)) {
     const std::string name = entry.path().filename().string();
     const int step = step_of(name, stem + "_");
-    if (step >= 0 && step > after_step && is_frame(entry.path())) fs::remove(entry.path(), ec);
+    const bool listed = std::find(kept.begin(), kept.end(), name) != kept.end();
+    if (step >= 0 && (step > after_step || (step == after_step && !listed)) && is_frame(entry.path())) fs::remove(entry.path(), ec);
     // Temporaries of a run that was killed outright.
     if (name.rfind(stem + "_", 0) == 0 && entry.path().extension() == ".tmp") fs::remove(entry.path(), ec);
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace loom {
 
@@ -13,8 +14,10 @@ namespace loom {
 void prepare_output_directory(const std::string& directory, const std::string& origin);
 
 // Removes the frames of the scene stem whose step is after `after_step` (all of them for -1): those of an
-// earlier run, which would otherwise sit beside the new ones, or those written after a checkpoint.
-void remove_frames(const std::string& directory, const std::string& stem, int after_step);
+// earlier run, which would otherwise sit beside the new ones, or those written after a checkpoint. Frames of
+// step `after_step` itself go too unless `kept` names them: the last state a stopped run wrote after its
+// checkpoint, which the continued run writes again if it is one of its frames.
+void remove_frames(const std::string& directory, const std::string& stem, int after_step, const std::vector<std::string>& kept = {});
 
 std::string checkpoint_path(const std::string& directory, int step);
 // Removes every checkpoint of the directory but the one of step `keep` (-1: all).

@@ -20,7 +20,8 @@ void FemRunT<D>::write_checkpoint(int step) {
   writer_.wait();  // the step's frame is in the collection
   ScopedTimer timer(timers_, "checkpoint");
   CheckpointWriter w;
-  write_checkpoint_header(w, checkpoint_header(method_name(scene_.scene.method), ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
+  write_checkpoint_header(w, checkpoint_header(method_name(scene_.scene.method), ctx_, status_, scene_, solver_, last_frame_time_, pvd_,
+                                                 probe_values_, stop_));
   w.store("nodes", m_.nodes);
   w.vector("node_body", m_.node_body);
   w.value("blocks", Index(m_.cells.size()));
@@ -148,7 +149,7 @@ CheckpointHeader FemRunT<D>::restore_checkpoint(const CheckpointReader& r) {
     rebuild_system(m_, topology_, /*connectivity_changed=*/true);
     probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   }
-  resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
+  resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_, probe_values_, stop_);
   return h;
 }
 

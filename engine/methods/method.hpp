@@ -47,6 +47,17 @@ class MethodRun {
 // Keeps the watched probe's recent values for a rate over a window.
 class StopCondition {
  public:
+  using History = std::vector<Vec2>;  // (t, value), oldest first: what a checkpoint keeps
+  History history() const {
+    History h;
+    for (const auto& [t, v] : history_) h.emplace_back(t, v);
+    return h;
+  }
+  void restore(const History& h) {
+    history_.clear();
+    for (const Vec2& e : h) history_.emplace_back(e.x(), e.y());
+  }
+
   bool met(const TimeSpec& time, double t, const std::vector<double>& probe_values) {
     if (time.stop_probe == kNoIndex) return false;
     const double v = probe_values[std::size_t(time.stop_probe)];

@@ -10,7 +10,6 @@
 #include "engine/core/errors.hpp"
 #include "engine/methods/mpm_method.hpp"
 #include "engine/methods/run_output.hpp"
-#include "systems/loads/apply_grid_loads.hpp"
 
 namespace loom {
 namespace {
@@ -31,7 +30,8 @@ void MpmRunT<D>::write_checkpoint(int step) {
   writer_.wait();  // the step's frames are in the collection
   ScopedTimer timer(timers_, "checkpoint");
   CheckpointWriter w;
-  write_checkpoint_header(w, checkpoint_header(method_name(scene_.scene.method), ctx_, status_, scene_, solver_, last_frame_time_, pvd_));
+  write_checkpoint_header(w, checkpoint_header(method_name(scene_.scene.method), ctx_, status_, scene_, solver_, last_frame_time_, pvd_,
+                                                 probe_values_, stop_));
   visit_stores(std::as_const(m_), [&](const char* name, const auto& store) { w.store(name, store); });
   w.vector("grid_system_base", m_.activity.system_base);
   store_checkpoint(w, options_, step);
@@ -52,12 +52,10 @@ CheckpointHeader MpmRunT<D>::restore_checkpoint(const CheckpointReader& r) {
   m_.activity.system_cells.clear();
   m_.activity.system_base.clear();
   if (r.has("grid_system_base")) r.vector("grid_system_base", m_.activity.system_base);
-  resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_);
-  // The probes of the restored step, which an adaptive step size reads before the next step writes them (with the
-  // body forces of that step's time, which energy probes read).
-  apply_grid_loads(ctx_, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points, m_.traction_loc, m_.bc);
-  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView<D>{m_.grid, m_.activity, m_.grid_nodes},
-                           m_.system, m_.bc, 0, probe_values_);
+  // The probes of the restored step (which an adaptive step size reads before the next step writes them) come with
+  // the checkpoint: evaluated here they would need the grid of that step, which the next step activates (its loads
+  // failed for traction points beside cells that were not yet active).
+  resume_from(h, scene_, ctx_, status_, solver_, last_frame_time_, probe_values_, stop_);
   return h;
 }
 

@@ -10,7 +10,8 @@
 namespace loom {
 
 CheckpointHeader checkpoint_header(const std::string& method, const StepContext& ctx, const StepStatus& status, const SceneSpec& scene,
-                                   const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd) {
+                                   const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd,
+                                   const std::vector<double>& probe_values, const StopCondition& stop) {
   CheckpointHeader h;
   h.step = ctx.step;
   h.t = ctx.t;
@@ -21,11 +22,15 @@ CheckpointHeader checkpoint_header(const std::string& method, const StepContext&
   h.linear_solver = solver.backend();
   h.last_frame_time = last_frame_time;
   h.frames = pvd.entries();
+  h.probe_values = probe_values;
+  h.stop_history = stop.history();
   return h;
 }
 
 void resume_from(const CheckpointHeader& h, const SceneSpec& scene, StepContext& ctx, StepStatus& status, LinearSolve& solver,
-                 double& last_frame_time) {
+                 double& last_frame_time, std::vector<double>& probe_values, StopCondition& stop) {
+  probe_values = h.probe_values;
+  stop.restore(h.stop_history);
   status.total_iterations = h.newton_iterations;
   status.total_cutbacks = h.cutbacks;
   solver.use_backend(h.linear_solver);
@@ -71,6 +76,8 @@ void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h) {
     w.value(key + "/part", h.frames[k].part);
     w.text(key + "/file", h.frames[k].file);
   }
+  w.vector("run/probe_values", h.probe_values);
+  w.vector("run/stop_history", h.stop_history);
 }
 
 CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSpec& scene, std::ostream* log) {
@@ -97,6 +104,9 @@ CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSp
     const std::string key = "run/frame/" + std::to_string(k);
     h.frames.push_back({r.value<double>(key + "/time"), r.text(key + "/file"), r.value<int>(key + "/part")});
   }
+  r.vector("run/probe_values", h.probe_values);
+  r.vector("run/stop_history", h.stop_history);
+  if (h.probe_values.size() != scene.probes.size()) h.probe_values.clear();  // the scene's probes changed (warned above)
   return h;
 }
 
@@ -109,7 +119,10 @@ void open_run_output(const SceneSpec& scene, const RunOptions& options, const Ch
   for (const auto& p : scene.probes) names.push_back(p.name);
   // A restart checks the probes of the run it continues before it removes anything of that run.
   if (restart) probes.reopen(dir + "/probes.csv", names, restart->step);
-  remove_frames(dir, stem, restart ? restart->step : -1);
+  std::vector<std::string> listed;  // the checkpoint's collection
+  if (restart)
+    for (const auto& f : restart->frames) listed.push_back(f.file);
+  remove_frames(dir, stem, restart ? restart->step : -1, listed);
   if (!restart) remove_checkpoints(dir, -1);
   pvd = PvdWriter(dir, stem);
   if (restart) pvd.restore(restart->frames);

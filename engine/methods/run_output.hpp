@@ -27,14 +27,19 @@ struct CheckpointHeader {
   std::string method, scene_hash, linear_solver;
   double last_frame_time = -1.0;
   std::vector<PvdWriter::Entry> frames;
+  // The probes of the step (what time.adaptive_dt reads for the next step's size) and time.stop_when's window: a
+  // restarted run goes on with them as the run it continues would have.
+  std::vector<double> probe_values;
+  StopCondition::History stop_history;
 };
 
 // The header of a checkpoint of the step that just completed.
 CheckpointHeader checkpoint_header(const std::string& method, const StepContext& ctx, const StepStatus& status, const SceneSpec& scene,
-                                   const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd);
-// Where a restarted run resumes: time, totals and the linear back-end of the checkpoint.
+                                   const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd,
+                                   const std::vector<double>& probe_values, const StopCondition& stop);
+// Where a restarted run resumes: time, totals, the linear back-end, the probes and the stop condition of the checkpoint.
 void resume_from(const CheckpointHeader& h, const SceneSpec& scene, StepContext& ctx, StepStatus& status, LinearSolve& solver,
-                 double& last_frame_time);
+                 double& last_frame_time, std::vector<double>& probe_values, StopCondition& stop);
 
 void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h);
 // Throws InputError if the checkpoint was written by another method; warns on `log` if by another scene text.

@@ -13,6 +13,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
 #include <thread>
 
 #include "engine/core/interrupt.hpp"
@@ -28,6 +30,29 @@ const std::string kSource = LOOM_SOURCE_DIR;
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& sets) {
   for (const auto& s : sets) args.push_back("--set"), args.push_back(s);
   return args;
+}
+
+// Runs `loom run SCENE --quiet --out OUT` with the overrides in a child process, sends it SIGINT once `wait_for`
+// exists (or after 60 s) and returns its wait status; its stderr is left in OUT.err.
+int interrupt_when(const std::string& scene, const std::string& out, const std::vector<std::string>& sets, const std::string& wait_for) {
+  std::vector<std::string> args = with({LOOM_BINARY, "run", scene, "--quiet", "--out", out}, sets);
+  const pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    freopen((out + ".err").c_str(), "w", stderr);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(LOOM_BINARY, argv.data());
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!std::filesystem::exists(wait_for) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return status;
 }
 
 // Runs the scene whole, then stopped after `stop` and continued; returns the whole run's probes.
@@ -121,24 +146,8 @@ TEST(Restart, SigintStopsCleanlyAndTheRunContinuesBitForBit) {
   const std::string scene = kSource + "/scenes/moderate_block_pfem.toml";
   const std::vector<std::string> sets = {"time.steps=400", "output.every=20", "output.checkpoint_every=50"};
   const std::string out = dir.file("run");
-  std::vector<std::string> args = with({LOOM_BINARY, "run", scene, "--quiet", "--out", out}, sets);
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    freopen((out + ".err").c_str(), "w", stderr);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(LOOM_BINARY, argv.data());
-    _exit(127);
-  }
   // Interrupt once the first periodic checkpoint exists (the run is then past step 50 of 400).
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!std::filesystem::exists(out + "/checkpoint_000050.loom") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
+  const int status = interrupt_when(scene, out, sets, out + "/checkpoint_000050.loom");
   ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal instead of stopping cleanly";
   const std::string err = read_text(out + ".err");
   ASSERT_EQ(WEXITSTATUS(status), 130) << err;
@@ -311,6 +320,61 @@ TEST(Restart, ACheckpointOfStepZeroContinuesLikeAFreshRun) {
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
   EXPECT_EQ(read_text(dir.file("part/probes.csv")), read_text(dir.file("whole/probes.csv")));
   EXPECT_EQ(read_text(dir.file("part/constrained-block-fem.pvd")), read_text(dir.file("whole/constrained-block-fem.pvd")));
+}
+
+// SIGINT without [output] checkpoint_every: the run still leaves a checkpoint of its last step and that step as the
+// last frame of its collection (it left nothing to continue from and ended the collection at the last periodic
+// frame); the continued run's probes and collection are those of a run that never stopped.
+TEST(Restart, SigintWithoutCheckpointEveryLeavesACheckpointAndTheLastFrame) {
+  TempDir dir("restart_sigint_plain");
+  const std::string scene = kSource + "/scenes/moderate_block_pfem.toml";
+  const std::vector<std::string> sets = {"time.steps=400", "output.every=20"};
+  const std::string out = dir.file("run");
+  const int status = interrupt_when(scene, out, sets, out + "/moderate-block-pfem_000040.vtu");
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal instead of stopping cleanly";
+  const std::string err = read_text(out + ".err");
+  ASSERT_EQ(WEXITSTATUS(status), 130) << err;
+  EXPECT_NE(err.find("; continue with: "), std::string::npos) << err;
+  const int last = int(parse_json(read_text(out + "/run.json")).at("last_converged_step").number);
+  ASSERT_GE(last, 40);
+  ASSERT_LT(last, 400);
+  std::ostringstream checkpoint;
+  checkpoint << out << "/checkpoint_" << std::setw(6) << std::setfill('0') << last << ".loom";
+  EXPECT_TRUE(std::filesystem::exists(checkpoint.str())) << checkpoint.str();
+  const ProbeTable probes = read_probes(out + "/probes.csv");
+  ASSERT_EQ(probes.rows.size(), std::size_t(last) + 1);
+  const auto entries = parse_pvd(read_text(out + "/moderate-block-pfem.pvd"));
+  ASSERT_FALSE(entries.empty());
+  EXPECT_EQ(entries.back().time, probes.column("time").back()) << "the collection does not end at the state the run reached";
+  EXPECT_TRUE(std::filesystem::exists(out + "/" + entries.back().file)) << entries.back().file;
+
+  const Command c = run_loom(with({"run", scene, "--quiet", "--restart", out}, sets));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const Command whole = run_loom(with({"run", scene, "--quiet", "--out", dir.file("whole")}, sets));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(read_text(out + "/probes.csv"), read_text(dir.file("whole") + "/probes.csv"));
+  EXPECT_EQ(read_text(out + "/moderate-block-pfem.pvd"), read_text(dir.file("whole") + "/moderate-block-pfem.pvd"));
+  if (last % 20 != 0) {  // the interrupted state's frame, not one of the run's, is gone from the directory
+    std::ostringstream extra;
+    extra << "moderate-block-pfem_" << std::setw(6) << std::setfill('0') << last << ".vtu";
+    EXPECT_FALSE(std::filesystem::exists(out + "/" + extra.str())) << extra.str();
+  }
+}
+
+// A run that ends at time.end (time.adaptive_dt) ends between frames: its last state is still the last frame (the
+// collection ended at the last frame step before it).
+TEST(Restart, AnAdaptiveRunEndsItsCollectionAtTimeEnd) {
+  TempDir dir("adaptive_last_frame");
+  const Command c = run_loom({"run", kSource + "/tests/scenes/es_pfem_bingham_column.toml", "--quiet", "--out", dir.path(), "--set",
+                              "output.every=7", "--set", "time.steps=40", "--set",
+                              "time.adaptive_dt={ probe = \"top\", expression = \"t < 0.019 ? 2e-3 : 4e-3\" }", "--set", "time.end=0.1"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const auto entries = parse_pvd(read_text(dir.file("es-pfem-bingham-column.pvd")));
+  ASSERT_GE(entries.size(), 2u);
+  EXPECT_NEAR(entries.back().time, 0.1, 1e-12);
+  EXPECT_EQ(entries.back().file, "es-pfem-bingham-column_000030.vtu");
+  EXPECT_TRUE(std::filesystem::exists(dir.file(entries.back().file)));
+  EXPECT_NEAR(entries[entries.size() - 2].time, 0.02 + 4e-3 * 18, 1e-12);  // step 28, the last frame step
 }
 
 }  // namespace
