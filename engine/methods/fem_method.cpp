@@ -313,10 +313,15 @@ void FemRunT<D>::describe(std::ostream& os) const {
   graph_->print(os);
 }
 
-// a_0 = M^-1 (f_ext - f_int) with the lumped mass (the residual of the initial assembly is f_int - f_ext at
-// rest): a constant load is then integrated exactly by Newmark and Bossak (free fall: u = g t^2 / 2).
+// a_0 = M^-1 (f_ext - f_int) with the lumped mass: a constant load is then integrated exactly by Newmark and Bossak
+// (free fall: u = g t^2 / 2). From an assembly without inertia (the step-0 residual the probes read holds the
+// integrator's inertia of the initial velocity), which is put back afterwards.
 template <int D>
 void FemRunT<D>::set_equilibrium_acceleration() {
+  const Eigen::VectorXd step0_full = m_.system.residual_full, step0 = m_.system.residual;
+  assemble_system(ctx_, AssemblyMode::static_residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
+  if constexpr (D == 2)
+    if (!m_.walls.empty()) add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
   const DofMap& dofs = m_.system.dofs;
   for (Index i = 0; i < m_.nodes.size(); ++i)
     for (int d = 0; d < D; ++d) {
@@ -331,6 +336,7 @@ void FemRunT<D>::set_equilibrium_acceleration() {
       m_.nodes.a_n[tie.dof / dofs.per_node][d] =
           0.5 * (m_.nodes.a_n[tie.master[0] / dofs.per_node][d] + m_.nodes.a_n[tie.master[1] / dofs.per_node][d]);
   }
+  m_.system.residual_full = step0_full, m_.system.residual = step0;
 }
 
 template <int D>
@@ -344,7 +350,8 @@ void FemRunT<D>::write_initial_state() {
       measure_contact_areas(ctx_, m_.walls, m_.cells, m_.nodes);
       add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
     }
-  if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium) set_equilibrium_acceleration();
+  if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium && m_.nodes.a_n.used() && m_.nodes.lumped_mass.used())
+    set_equilibrium_acceleration();
   status_ = StepStatus{};
   status_.converged = true;
   probes_node();

@@ -305,6 +305,28 @@ void MpmRunT<D>::initial_acceleration() {
   }
 }
 
+// mpm_fem: the FEM bodies start undeformed (f_int = 0), so a_0 = M^-1 f_ext with the lumped mass is the body force
+// b(X) at every free dof of their nodes and 0 at the held ones (a clamped plate's free nodes start falling at g, as
+// its lumped equations say; the consistent mass the step uses differs only next to the held nodes).
+template <int D>
+void MpmRunT<D>::fem_nodes_equilibrium_acceleration() {
+  if constexpr (D == 2) {
+    Nodes<2>& g = m_.grid_nodes;
+    std::vector<Index> body(std::size_t(g.size()), kNoIndex);
+    for (Index c = m_.activity.always_active_from; c != kNoIndex && c < m_.grid.size(); ++c)
+      for (int a = 0; a < m_.grid.stride; ++a) body[std::size_t(m_.grid.node(c, a))] = m_.grid.body[c];
+    for (Index i = 0; i < g.size(); ++i) {
+      if (!m_.coupled_mesh.fem_node[std::size_t(i)] || body[std::size_t(i)] == kNoIndex) continue;
+      const auto& e = m_.bc.body_force[std::size_t(body[std::size_t(i)])];
+      const Vec2 X = g.X[i] - g.u_n[i];
+      for (int d = 0; d < 2; ++d)
+        g.a[i][d] = e[std::size_t(d)] == kNoIndex ? 0.0 : m_.bc.expressions[std::size_t(e[std::size_t(d)])](0.0, X.x(), X.y());
+    }
+    for (const auto& p : m_.bc.prescribed)
+      if (p.dof % m_.bc.per_node < 2 && m_.coupled_mesh.fem_node[std::size_t(p.node)]) g.a[p.node][p.dof % m_.bc.per_node] = 0.0;
+  }
+}
+
 template <int D>
 void MpmRunT<D>::write_initial_state() {
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
@@ -316,6 +338,8 @@ void MpmRunT<D>::write_initial_state() {
       // equilibrium acceleration of its body force, particle by particle (free fall: exactly g).
       for (Index p = 0; p < m_.particles.X.size(); ++p)
         m_.particles.a[p] = m_.bc.particle_body_force.empty() ? Vec<D>::Zero() : m_.bc.particle_body_force[std::size_t(p)];
+      if constexpr (D == 2)
+        if (m_.coupled) fem_nodes_equilibrium_acceleration();
     } else {
       initial_acceleration();
     }

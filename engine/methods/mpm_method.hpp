@@ -60,6 +60,7 @@ class MpmRunT final : public MethodRun {
   void write_checkpoint(int step);
   CheckpointHeader restore_checkpoint(const CheckpointReader& r);
   void initial_acceleration();
+  void fem_nodes_equilibrium_acceleration();
   void newton_node();
   void probes_node();
   void output_node();

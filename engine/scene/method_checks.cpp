@@ -61,8 +61,6 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
     if (n_mpm == 0) root.error("body", "method mpm_fem needs an MPM body: a body with particles (or a mesh to sample), not element = \"quad9\"");
     if (n_fem == 0) root.error("body", "method mpm_fem needs an FEM body: a body with element = \"quad9\" and a rectangle mesh beside the grid");
     if (grid.present() && !s.grid.quad9) grid.error("cells", "method mpm_fem couples FEM quad9 cells to a quad9 grid: cells = \"quad9\"");
-    if (s.time.initial_acceleration == InitialAcceleration::equilibrium)
-      time.error("initial_acceleration", "method mpm_fem starts from a_0 = 0 at the particles and the FEM nodes (zero)");
   } else if (s.bodies.size() > 1 && root.table("mpm").string("scheme") != "particle_newmark") {
     // Several bodies share the grid (in contact through it, no slip) with Newmark at the particles; the grid
     // Newmark of [Moreno et al.] is checked with one.

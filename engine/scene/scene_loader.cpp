@@ -116,6 +116,11 @@ class Loader {
     s.time.dt = t.real("dt");
     s.time.steps = int(t.integer("steps"));
     s.time.mass = pick<MassKind>(t.string("mass"), {{"lumped", MassKind::lumped}, {"consistent", MassKind::consistent}});
+    // Default: the equilibrium acceleration of Newmark and Bossak, whose solve needs the lumped mass (zero with the
+    // consistent one; the other integrators have none).
+    const bool second_order = s.time.integrator == Integrator::newmark || s.time.integrator == Integrator::bossak;
+    if (!t.has("initial_acceleration") && (!second_order || s.time.mass == MassKind::consistent))
+      s.time.initial_acceleration = InitialAcceleration::zero;
     read_newmark_parameters(t, s.time);
   }
 

@@ -50,9 +50,13 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("time.mass", K::choice, "Mass matrix of dynamic integrators: row-sum lumped or consistent (mpm: lumped only).")
                   .one_of({"lumped", "consistent"}).by_default("lumped"));
   s.push_back(key("time.initial_acceleration", K::choice,
-                  "newmark, bossak: the acceleration at t = 0: zero ([Moreno et al.] Algorithm 1), or equilibrium (a_0 = M^-1 (f_ext - f_int), "
-                  "lumped mass, so that a suddenly applied constant load is integrated exactly).")
-                  .one_of({"zero", "equilibrium"}).by_default("zero"));
+                  "newmark, bossak: the acceleration at t = 0. equilibrium: a_0 = M^-1 (f_ext - f_int) with the lumped mass, the state the "
+                  "equations of motion give at t = 0, so that a load applied from t = 0 on (gravity, a step load) is integrated "
+                  "exactly (a body falls at g); every method (mpm_fem, mpm's particle_newmark: the body force at the particles and at "
+                  "the FEM bodies' free nodes, their f_int being 0). zero: a_0 = 0 ([Moreno et al.] Algorithm 1), which lags a load "
+                  "applied at t = 0 by half a step (free fall: by g dt t / 2). Default equilibrium; zero with time.mass = "
+                  "\"consistent\".")
+                  .one_of({"zero", "equilibrium"}).by_default("equilibrium"));
   s.push_back(key("time.predictor", K::choice,
                   "newmark, bossak (methods fem, pfem, es_pfem): where Newton starts each step: last_step (u = u_n), or constant_acceleration "
                   "(u = u_n + dt v_n + dt^2 a_n / 2, whose residual is only f_int's change along a smooth path: fast rotations, "

@@ -218,7 +218,7 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
                                const BoundaryConditions<D>& bc, std::vector<QuadPoints<D>>& quad,
                                LinearSystem& system, std::vector<Edges<2>>* domains) {
   const bool tangent = mode == AssemblyMode::residual_and_tangent;
-  const Inertia inertia = inertia_of(ctx);
+  const Inertia inertia = mode == AssemblyMode::static_residual ? Inertia{} : inertia_of(ctx);
   auto& A = system.pattern.matrix;
   if (tangent) zero_in_parallel(A.valuePtr(), A.nonZeros());
   system.residual_full.setZero();

@@ -22,7 +22,8 @@
 
 namespace loom {
 
-enum class AssemblyMode { residual, residual_and_tangent };
+// static_residual: f_int - f_ext alone, without the inertia of a dynamic integrator (the equilibrium at t = 0).
+enum class AssemblyMode { residual, residual_and_tangent, static_residual };
 
 struct AssemblyResult {
   Index inverted_cells = 0;  // cells where J <= 0 at the iterate: the residual is meaningless

@@ -6,7 +6,8 @@
 //    cells hold them (a linear field with a symmetric gradient would not be one: the free sides' natural condition
 //    (grad u + grad u^T) n = 0 bends it);
 //  - a disk and the plate falling together under gravity, nothing held: the plate's nodes, the grid that moves
-//    with it and every particle follow Newmark's closed form with a_0 = 0 (spec seed004 §3, check 1),
+//    with it and every particle follow Newmark's closed form, u_n = g t_n^2 / 2 from the equilibrium start (the
+//    default), and with a_0 = 0 (spec seed004 §3, check 1)
 //      u_n = g (t_n^2 / 2 - dt t_n / 2 + beta dt^2),  v_n = g (t_n - dt / 2)   (n >= 1),
 //    to round-off, with F = I: the FEM cells' consistent mass, their body force and the shared nodes carry a
 //    translation exactly;
@@ -65,10 +66,14 @@ std::string held_on_linear_field(const std::vector<std::string>& boxes, const st
   return text;
 }
 
-double u_factor(int n) {
+// Displacement and velocity factors of g after n steps: from a_0 = 0 (the paper), or from the equilibrium a_0 = g
+// (the default), with which Newmark integrates the fall exactly.
+double u_factor(int n, bool zero_start) {
   const double t = n * kDt;
-  return n == 0 ? 0.0 : 0.5 * t * t - 0.5 * kDt * t + kBeta * kDt * kDt;
+  if (!zero_start || n == 0) return 0.5 * t * t;
+  return 0.5 * t * t - 0.5 * kDt * t + kBeta * kDt * kDt;
 }
+double v_factor(int n, bool zero_start) { return zero_start ? kDt * (n - 0.5) : kDt * n; }
 
 TEST(MpmFemCoupling, ThePlateSharesOneRowOfGridNodes) {
   const MpmModel m(testing::scene_from_text(falling_scene(true)));
@@ -112,14 +117,19 @@ TEST(MpmFemCoupling, TheResetFieldCarriesARigidMotionOfThePlateOverTheGrid) {
   std::printf("[mpm_fem reset field] rigid motion over %d nodes: %.1e\n", int(m.grid_nodes.size()), worst);
 }
 
+// Both starts: the default (equilibrium: the body force at the particles and at the plate's free nodes, a fall at g
+// exactly) and a_0 = 0.
 TEST(MpmFemCoupling, DiskAndPlateFallTogetherAsNewmarksClosedForm) {
-  const SceneSpec scene = testing::scene_from_text(falling_scene(true));
-  testing::TempDir dir("mpm_fem_fall");
+  for (const bool zero_start : {false, true}) {
+  SCOPED_TRACE(zero_start ? "a_0 = 0" : "a_0 = g (default)");
+  const SceneSpec scene = testing::scene_from_text(falling_scene(true), zero_start ? std::vector<std::string>{"time.initial_acceleration=\"zero\""}
+                                                                                    : std::vector<std::string>{});
+  testing::TempDir dir(zero_start ? "mpm_fem_fall_zero" : "mpm_fem_fall");
   auto run = testing::make_mpm_run(scene, dir.path());
   const RunSummary summary = run->run();
   ASSERT_TRUE(summary.converged) << summary.failure;
   const MpmModel& m = run->model();
-  const double u = kG * u_factor(kSteps), v = kG * kDt * (kSteps - 0.5);
+  const double u = kG * u_factor(kSteps, zero_start), v = kG * v_factor(kSteps, zero_start);
   double worst_u = 0.0, worst_v = 0.0, worst_F = 0.0, worst_node = 0.0, worst_grid = 0.0;
   for (Index p = 0; p < m.particles.X.size(); ++p) {
     worst_u = std::max(worst_u, (m.particles.u[p] - Vec2(0.0, u)).norm() / std::abs(u));
@@ -130,11 +140,11 @@ TEST(MpmFemCoupling, DiskAndPlateFallTogetherAsNewmarksClosedForm) {
     if (m.coupled_mesh.fem_node[std::size_t(i)])
       worst_node = std::max({worst_node, (m.grid_nodes.u_n[i] - Vec2(0.0, u)).norm() / std::abs(u), (m.grid_nodes.v[i] - Vec2(0.0, v)).norm() / std::abs(v)});
     else  // the grid moved with the plate at the start of the last step: the reset field is the plate's u^(n-1)
-      worst_grid = std::max(worst_grid, (m.grid_nodes.u_n[i] - Vec2(0.0, kG * u_factor(kSteps - 1))).norm() / std::abs(u));
+      worst_grid = std::max(worst_grid, (m.grid_nodes.u_n[i] - Vec2(0.0, kG * u_factor(kSteps - 1, zero_start))).norm() / std::abs(u));
   }
   const auto uy = testing::read_probes(dir.file("probes.csv")).column("uy");
   double worst_probe = 0.0;
-  for (int n = 0; n <= kSteps; ++n) worst_probe = std::max(worst_probe, std::abs(uy[std::size_t(n)] - kG * u_factor(n)) / std::abs(u));
+  for (int n = 0; n <= kSteps; ++n) worst_probe = std::max(worst_probe, std::abs(uy[std::size_t(n)] - kG * u_factor(n, zero_start)) / std::abs(u));
   EXPECT_LE(worst_u, 1e-10);
   EXPECT_LE(worst_v, 1e-10);
   EXPECT_LE(worst_F, 1e-10);
@@ -142,8 +152,10 @@ TEST(MpmFemCoupling, DiskAndPlateFallTogetherAsNewmarksClosedForm) {
   EXPECT_LE(worst_grid, 1e-10);
   EXPECT_LE(worst_probe, 1e-10);
   EXPECT_GT(std::abs(u), 4 * 0.25);  // fell by more than four of the grid's cells
-  std::printf("[mpm_fem free fall] %d particles u %.1e v %.1e F %.1e; plate nodes %.1e; grid %.1e; Newton %lld\n", int(m.particles.X.size()),
-              worst_u, worst_v, worst_F, worst_node, worst_grid, summary.newton_iterations);
+  std::printf("[mpm_fem free fall, %s] %d particles u %.1e v %.1e F %.1e; plate nodes %.1e; grid %.1e; Newton %lld\n",
+              zero_start ? "a_0 = 0" : "a_0 = g", int(m.particles.X.size()), worst_u, worst_v, worst_F, worst_node, worst_grid,
+              summary.newton_iterations);
+  }
 }
 
 
@@ -235,7 +247,9 @@ TEST(AdaptiveTimeStep, EachStepTakesTheFormulaAtTheProbesLastValueAndTheRunEndsA
 TEST(MpmFemCoupling, TheClampCarriesTheWeightOfABlockOnThePlate) {
   std::string text = falling_scene(false);
   const auto cut = [&](const std::string& from, const std::string& to) { text.replace(text.find(from), from.size(), to); };
-  cut("dt = 0.02\nsteps = 25\n", "dt = 1000.0\nsteps = 1\n");
+  // From rest (a_0 = 0): Newmark carries (1 - 2 beta) / (2 beta) a_0 into the end of a step, however long; from the
+  // equilibrium start (a_0 = g) the clamp would see the block's weight and 2/3 of it again.
+  cut("dt = 0.02\nsteps = 25\n", "dt = 1000.0\nsteps = 1\ninitial_acceleration = \"zero\"\n");
   cut("particles = { generator = \"disk\", centre = [0.5, -0.2], radius = 0.5, core_radius = 0.4, n_theta = 40, factor = 1.3 }\n",
       "mesh = { generator = \"rectangle\", origin = [0.0, -2.0], size = [0.5, 0.25], divisions = [8, 4], pattern = \"alternating\" }\n"
       "particles_per_cell = 6\n");
@@ -286,7 +300,8 @@ TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
   double worst = 0.0, low_b = 1e300;
   for (Index p = 0; p < particles.X.size(); ++p) {
     const double g = particles.body[p] == 0 ? -9.81 : -4.0;
-    worst = std::max(worst, (particles.u[p] - Vec2(0.0, g * u_factor(kSteps))).norm() / std::abs(g * u_factor(kSteps)));
+    // The default start, a_0 = each particle's body force: g t^2 / 2 exactly.
+    worst = std::max(worst, (particles.u[p] - Vec2(0.0, g * u_factor(kSteps, false))).norm() / std::abs(g * u_factor(kSteps, false)));
     if (particles.body[p] == 1) low_b = std::min(low_b, particles.position(p).y());
   }
   EXPECT_LE(worst, 1e-10);
