@@ -137,6 +137,7 @@ int run(const Args& a) {
   resolve_output(a, scene, options);
   options.threads = threads;
   options.progress = !a.quiet;
+  options.quiet = a.quiet;
   options.log = &std::cerr;
   options.verbose = a.verbose;
   options.profile = a.profile;
@@ -165,6 +166,7 @@ int run(const Args& a) {
               << "loom: last converged step " << summary.last_converged_step << " (t = " << step_end << ")";
     if (summary.last_converged_time > step_end * (1 + 1e-12) + 1e-300)
       std::cerr << "; sub-steps of the failed step converged up to t = " << summary.last_converged_time;
+    if (summary.cutbacks > 0) std::cerr << "; " << loom::count_of(summary.cutbacks, "cut-back") << " in the run";
     std::cerr << "; the output written so far is in " << options.output_directory << "\n";
     return 1;
   }
@@ -185,7 +187,9 @@ int run(const Args& a) {
   }
   if (!a.quiet)
     std::cout << "loom: " << steps << (summary.restarted ? " (continued from step " + std::to_string(summary.restarted_from) + ")" : "")
-              << ", " << loom::count_of(summary.newton_iterations, "Newton iteration") << ", " << loom::format_seconds(summary.wall_seconds)
+              << ", " << loom::count_of(summary.newton_iterations, "Newton iteration")
+              << (summary.cutbacks > 0 ? ", " + loom::count_of(summary.cutbacks, "cut-back") : std::string()) << ", "
+              << loom::format_seconds(summary.wall_seconds)
               << " wall; output in " << options.output_directory << "\n";
   return 0;
 }

@@ -20,11 +20,34 @@ class IterationMark {
   Timers& timers_;
 };
 
+// "1.2e-08": the short form of a relative level in a message.
+std::string short_number(double x) {
+  std::ostringstream os;
+  os.precision(2);
+  os << x;
+  return os.str();
+}
+
 }  // namespace
+
+bool residual_stagnated(const std::vector<double>& levels) {
+  if (levels.size() < 6) return false;
+  const auto half = levels.begin() + std::ptrdiff_t(levels.size() / 2);
+  const double earlier = *std::min_element(levels.begin(), half), later = *std::min_element(half, levels.end());
+  return later >= 0.1 * earlier;
+}
 
 NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& timers) {
   NewtonReport report;
   IterationMark iteration_mark(timers);
+  // A cell that inverts after a first update of many body sizes: the loads are out of scale with the body.
+  auto units_hint = [&]() -> std::string {
+    if (!(report.first_increment_over_size > 10.0)) return "";
+    return "; the first Newton update moved nodes by " + short_number(report.first_increment_over_size) +
+           " times the body's size: the loads are far beyond what the body can carry -- check that E, density, body forces and "
+           "tractions are in one system of units (a mesh in mm with a density in kg/m^3 and g in m/s^2 makes the weight 1e6 "
+           "times too large for MPa)";
+  };
   auto fail = [&](const std::string& why) {
     report.failure = why;
     return report;
@@ -73,6 +96,20 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     return true;
   };
   note_blocks();
+  // The residual's level against the reference its test uses (the largest over the blocks): converged at
+  // residual_relative; one per accepted assembly, for the stagnation test.
+  std::vector<double> levels;
+  auto note_level = [&](double res) {
+    double level = res / std::max({r0, p.force_scale(), 1e-300});
+    if (p.blocks() > 1) {
+      level = 0.0;
+      for (int b = 0; b < p.blocks(); ++b) {
+        const double reference = b == 0 ? std::max(momentum_0, p.force_scale()) : block_reference[std::size_t(b)];
+        level = std::max(level, p.block_norm(b) / std::max(reference, 1e-300));
+      }
+    }
+    levels.push_back(level);
+  };
   // Converged at residual norm `res` after an increment of norm `increment`.
   auto converged_at = [&](double res, double increment) {
     if (p.prescribed_pending()) return false;
@@ -102,6 +139,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     }
     if (!solved) return fail(p.solve_failure());
     report.iterations = it;
+    if (it == 1) report.first_increment_over_size = p.increment_over_size();
     double step = 1.0;
     {
       ScopedTimer t(timers, "newton/update");
@@ -122,22 +160,34 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
         admissible = assemble_trial();
         r_new = admissible ? p.residual_norm() : INFINITY;
       }
-      if (admissible && !acceptable()) return fail("the line search found no decrease of the residual");
+      if (admissible && !acceptable()) return fail("the line search found no decrease of the residual" + units_hint());
     }
-    if (!admissible) return fail("a cell inverted during the Newton iterations");
-    if (!std::isfinite(r_new)) return fail("the residual is not finite");
+    if (!admissible) return fail("a cell inverted during the Newton iterations" + units_hint());
+    if (!std::isfinite(r_new)) return fail("the residual is not finite" + units_hint());
     r = r_new;
     note_blocks();
+    note_level(r);
     report.residuals.push_back(r);
     if (s.log) *s.log << "  newton " << it << ": |r| = " << r << " (|r|/|r_0| = " << r / std::max(r0, 1e-300) << "), step " << step << "\n";
     if (converged_at(r, step * p.increment_norm())) {
       report.converged = true;
       return report;
     }
-    if (r > 1e12 * std::max(r0, s.residual_absolute)) return fail("the residual diverges");
+    if (r > 1e12 * std::max(r0, s.residual_absolute)) return fail("the residual diverges" + units_hint());
   }
   std::ostringstream os;
   os << "no convergence in " << s.max_iterations << " iterations (residual " << r << ", first " << r0 << ")";
+  // The best of the later half: the floor the iterations reached. Only a floor of round-off size is named (far
+  // above it, the iterations cycle: a message about the tolerance would mislead).
+  const double floor = levels.empty() ? 0.0 : *std::min_element(levels.begin() + std::ptrdiff_t(levels.size() / 2), levels.end());
+  if (residual_stagnated(levels) && floor <= 1e-4) {
+    report.stagnated = true;
+    report.stagnation = floor;
+    os << ": the residual stagnated at " << short_number(floor) << " relative to the forces in balance, above solver.residual_relative = "
+       << short_number(s.residual_relative) << ": loosen it (solver.residual_relative = " << short_number(std::pow(10.0, std::ceil(std::log10(2.0 * floor))))
+       << ") if that accuracy suffices, or make the tangent better conditioned (a material nearer incompressibility, or bodies of very "
+          "different stiffness, raise the round-off floor of the residual)";
+  }
   return fail(os.str());
 }
 

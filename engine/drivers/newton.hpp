@@ -7,7 +7,8 @@
 // backtracking line search halves the step while the residual does not decrease (Armijo, c = 1e-4) or
 // the iterate is inadmissible (an inverted cell). A problem with several residual blocks (mixed u-p) is
 // converged when each block is (NonlinearProblem::blocks). Failure is reported, never thrown: the caller
-// cuts the step back.
+// cuts the step back. A failure says what to change where it can: a residual that stagnated above the tolerance
+// names its level and the tolerance; a cell inverted after a first update of many body sizes names the loads' units.
 #pragma once
 
 #include <ostream>
@@ -65,6 +66,9 @@ class NonlinearProblem {
   // fall below residual_relative times its reference (or below residual_absolute).
   virtual int blocks() const { return 1; }
   virtual double block_norm(int /*block*/) const { return residual_norm(); }
+  // The largest displacement increment of the last solve relative to the size of the body (0: not known): a first
+  // update that moves nodes by many body sizes means loads the body cannot carry (most often a unit mistake).
+  virtual double increment_over_size() const { return 0.0; }
 };
 
 struct NewtonReport {
@@ -72,7 +76,16 @@ struct NewtonReport {
   int iterations = 0;               // linear solves
   std::vector<double> residuals;    // residual norm after each assembly that was accepted
   std::string failure;              // why it did not converge
+  // Failed in max_iterations with a residual that stopped falling (residual_stagnated) at a level of round-off
+  // size above the tolerance: `stagnation`, relative to the reference residual_relative is compared with (<= 1e-4).
+  bool stagnated = false;
+  double stagnation = 0.0;
+  double first_increment_over_size = 0.0;  // NonlinearProblem::increment_over_size after the first solve
 };
+
+// Whether residual levels (each relative to its reference, one per accepted assembly after the first) stopped
+// falling: at least 6 of them, the best of the later half not a decade below the best of the earlier half.
+bool residual_stagnated(const std::vector<double>& levels);
 
 NewtonReport solve_newton(NonlinearProblem& problem, const NewtonSettings& settings, Timers& timers);
 

@@ -101,6 +101,8 @@ void summarise_run(const TimeLoopResult& result, const StepStatus& status, const
   std::ostringstream os;
   if (result.anomaly)
     os << "step " << result.failed_step << " stopped: " << result.failure;
+  else if (result.no_cut_back)
+    os << "step " << result.failed_step << " did not converge: " << result.failure;
   else
     os << "step " << result.failed_step << " did not converge after " << schedule.max_cutbacks << " cut-backs (last dt "
        << result.failed_dt << "): " << result.failure;

@@ -66,6 +66,15 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
         result.last_converged_time = t;
         continue;
       }
+      if (!status.shorter_step_helps) {  // the halved step would fail the same way
+        result.failed_step = step;
+        result.failed_dt = ctx.dt;
+        result.failure = status.failure + "; no cut-back was tried: a shorter step solves the same problem here (a static step whose "
+                                          "loads and prescribed values do not change in time)";
+        result.no_cut_back = true;
+        ctx.t = t;
+        return result;
+      }
       if (callbacks.cut_back) callbacks.cut_back(ctx, status);
       if (halvings == max_cutbacks) {
         result.failed_step = step;

@@ -1,5 +1,6 @@
 // Time stepping with cut-backs: each scene step of size dt is solved by running the step graph; when
-// Newton fails the (sub)step is halved and retried, up to max_cutbacks halvings within one scene step.
+// Newton fails the (sub)step is halved and retried, up to max_cutbacks halvings within one scene step, unless the
+// step's status says that a shorter step solves the same problem (then the loop stops at once).
 // Sub-steps complete the scene step at exactly t = step * dt (ctx.step_end marks the last one), or at t + the
 // size the step_size callback gives (adaptive time steps).
 // A RunError thrown by a system (an anomaly, not a Newton failure) ends the loop with the partial result.
@@ -25,6 +26,7 @@ struct TimeLoopResult {
   int failed_step = 0;
   double failed_dt = 0.0;
   bool anomaly = false;              // a system threw (RunError): no cut-back is tried
+  bool no_cut_back = false;          // failed where a shorter step solves the same problem: no cut-back was tried
   int interrupted_by = 0;            // the signal that stopped the loop between steps, 0 if none
   bool stopped = false;              // stopped after step `stop_after` as asked
   bool settled = false;              // completed early: `settled` said the run had reached its end state

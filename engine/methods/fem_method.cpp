@@ -13,6 +13,7 @@
 #include "engine/io/vtk_writer.hpp"
 #include "engine/methods/adaptive_step.hpp"
 #include "engine/methods/conditioning_note.hpp"
+#include "engine/methods/cut_back_policy.hpp"
 #include "engine/methods/inlet_flow.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/methods/model_checks.hpp"
@@ -223,6 +224,7 @@ void FemRunT<D>::newton_node() {
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
+  status_.shorter_step_helps = report.converged || shorter_step_changes_problem(scene_, m_.bc.expressions);
   note_conditioning(solver_, ctx_, status_, options_.log, warned_singular_);
   // A cell the alpha shape has just added (or removed) changes a nearly incompressible body at once: say so,
   // it is the usual reason why a PFEM step fails where the previous ones converged.

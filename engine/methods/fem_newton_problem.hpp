@@ -2,6 +2,7 @@
 // update systems on the run's stores.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -82,6 +83,19 @@ class FemNewtonProblemT final : public NonlinearProblem {
   int blocks() const override { return nodes_.p_n.used() && system_.dofs.per_node == D + 1 ? 2 : 1; }
   double block_norm(int block) const override {
     return blocks() == 1 ? residual_norm() : block_part_norm(system_.residual, block == 1);
+  }
+  // max |du| over the nodes' displacements against the diagonal of the bodies' bounding box at the step's start.
+  double increment_over_size() const override {
+    if (nodes_.size() == 0 || system_.increment_full.size() != nodes_.size() * system_.dofs.per_node) return 0.0;
+    Vec<D> lo = nodes_.position_n(0), hi = lo;
+    double largest = 0.0;
+    for (Index i = 0; i < nodes_.size(); ++i) {
+      const Vec<D> x = nodes_.position_n(i);
+      lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+      for (int d = 0; d < D; ++d) largest = std::max(largest, std::abs(system_.increment_full[i * system_.dofs.per_node + d]));
+    }
+    const double size = (hi - lo).norm();
+    return size > 0.0 ? largest / size : 0.0;
   }
   bool prescribed_pending() const override {
     for (const auto& p : bc_.prescribed) {

@@ -24,6 +24,7 @@ struct RunOptions {
   bool verbose = false;          // Newton residuals of every iteration to `log`
   bool profile = false;          // per-step profile in timings.json (engine/timing/profile.hpp)
   std::ostream* log = nullptr;   // run messages (cut-backs, failure); nullptr: silent
+  bool quiet = false;            // --quiet: no line per cut-back (the summary counts them)
   std::string output_origin;     // what named the output directory, for messages: "--out" or file:line: output.directory
   std::string restart_file;      // continue from this checkpoint (engine/io/checkpoint.hpp); empty: start at t = 0
   int stop_after = 0;            // stop after this step and write its checkpoint (0: run to the end)

@@ -15,6 +15,7 @@
 #include "engine/methods/build_mesh.hpp"
 #include "engine/methods/fem_newton_problem.hpp"
 #include "engine/methods/conditioning_note.hpp"
+#include "engine/methods/cut_back_policy.hpp"
 #include "engine/methods/model_checks.hpp"
 #include "engine/methods/mpm_newton_problem.hpp"
 #include "engine/methods/run_output.hpp"
@@ -175,6 +176,7 @@ void MpmRunT<D>::newton_node() {
   status_.step_iterations += report.iterations;
   status_.total_iterations += report.iterations;
   status_.failure = report.failure;
+  status_.shorter_step_helps = report.converged || shorter_step_changes_problem(scene_, m_.bc.expressions);
   // The likely cause of a failure or of a singular tangent on quadrilateral cells: too few particles in some. A
   // quad4 (quad9) cell integrated at fewer than 4 (9) points has zero-energy modes; on quad9 grids the soft
   // stiffness of edge cells is what removes them (seed 004 eq 26).

@@ -4,6 +4,7 @@
 // and, since its tangent leaves their derivative out, mixes the Newton increments (anderson_mixing.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -63,6 +64,19 @@ class MpmNewtonProblemT final : public NonlinearProblem {
     double s = m_.bc.external.squaredNorm();
     for (const auto& p : m_.bc.prescribed) s += m_.system.residual_full[p.dof] * m_.system.residual_full[p.dof];
     return std::sqrt(s);
+  }
+  // max |du| over the grid's displacements against the diagonal of the particles' bounding box.
+  double increment_over_size() const override {
+    const Points<D>& pts = m_.particles;
+    const int pn = m_.system.dofs.per_node;
+    if (pts.X.size() == 0 || m_.system.increment_full.size() != m_.grid_nodes.size() * pn) return 0.0;
+    Vec<D> lo = pts.X[0] + pts.u[0], hi = lo;
+    for (Index p = 0; p < pts.X.size(); ++p) lo = lo.cwiseMin(pts.X[p] + pts.u[p]), hi = hi.cwiseMax(pts.X[p] + pts.u[p]);
+    double largest = 0.0;
+    for (Index i = 0; i < m_.grid_nodes.size(); ++i)
+      for (int d = 0; d < D; ++d) largest = std::max(largest, std::abs(m_.system.increment_full[i * pn + d]));
+    const double size = (hi - lo).norm();
+    return size > 0.0 ? largest / size : 0.0;
   }
   bool prescribed_pending() const override {
     const int pn = m_.bc.per_node;

@@ -43,7 +43,7 @@ void resume_from(const CheckpointHeader& h, const SceneSpec& scene, StepContext&
 RunSchedule start_run(const SceneSpec& scene, const RunOptions& options,
                       const std::function<CheckpointHeader(const CheckpointReader&)>& restore, RunSummary& summary, PvdWriter& pvd,
                       ProbeWriter& probes) {
-  RunSchedule schedule{scene.time.dt, scene.time.steps, scene.solver.max_cutbacks, options.progress, options.log};
+  RunSchedule schedule{scene.time.dt, scene.time.steps, scene.solver.max_cutbacks, options.progress, options.quiet ? nullptr : options.log};
   schedule.checkpoint_every = options.write_files ? scene.output.checkpoint_every : 0;
   schedule.stop_after = options.stop_after;
   std::optional<CheckpointHeader> restart;

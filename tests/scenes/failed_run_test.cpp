@@ -114,6 +114,19 @@ TEST(FailedRun, NewtonGivesUpWithExitCode1AndKeepsTheConvergedOutput) {
   EXPECT_TRUE(parse_json(read_text(out + "/timings.json")).has("timers"));
 }
 
+// --quiet prints no line per cut-back: the failure and the run's count of cut-backs say what happened.
+TEST(FailedRun, QuietPrintsNoCutBackLinesButCountsThem) {
+  TempDir dir("failed_quiet");
+  write_text(dir.file("crushed.toml"), kCrushed);
+  const Command c = run_loom({"run", dir.file("crushed.toml"), "--out", dir.file("out"), "--quiet"});
+  ASSERT_EQ(c.exit_code, 1) << c.err;
+  EXPECT_EQ(c.err.find("cutting the step back"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("loom: the run failed: step 3 did not converge after 1 cut-backs"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("; 1 cut-back in the run; "), std::string::npos) << c.err;
+  const Command loud = run_loom({"run", dir.file("crushed.toml"), "--out", dir.file("loud")});
+  EXPECT_NE(loud.err.find("cutting the step back"), std::string::npos) << loud.err;
+}
+
 TEST(FailedRun, ConvergedSubStepsOfTheFailedStepAreKeptAsALastFrame) {
   // 50 % more compression per step from step 2 on: some step fails after some of its halved sub-steps
   // converged. The state they reached is written as a last frame, after the probes of the last

@@ -91,5 +91,43 @@ TEST(RunErrors, ANearlySingularTangentIsNamedWithItsPivotRatio) {
   EXPECT_EQ(stabilised.err.find("singular"), std::string::npos) << stabilised.err;
 }
 
+// The nearly incompressible Cook's membrane with p1p1_uphi at nu = 0.49999 stagnates above residual_relative = 1e-8
+// (its round-off floor: K / G = 5e4): the failure names the level and the key to loosen, and no cut-back is tried --
+// a static step under a constant load solves the same problem when halved (it was cut back five times for nothing).
+TEST(RunErrors, AStagnatingStaticStepSaysWhatToLoosenAndIsNotCutBack) {
+  TempDir dir("errors_stagnation");
+  const std::string scene = kSource + "/scenes/cooks_membrane_nearly_incompressible.toml";
+  const std::vector<std::string> sets = {"--set", "body[0].element=\"p1p1_uphi\"", "--set", "material[0].nu=0.49999", "--set",
+                                         "body[0].mesh.divisions=[16,16]", "--set", "solver.residual_relative=1e-12"};
+  std::vector<std::string> args = {"run", scene, "--quiet", "--out", dir.path()};
+  args.insert(args.end(), sets.begin(), sets.end());
+  const Command c = run_loom(args);
+  ASSERT_EQ(c.exit_code, 1) << c.err;
+  EXPECT_NE(c.err.find("the residual stagnated at "), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("above solver.residual_relative = 1e-12: loosen it (solver.residual_relative = "), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("no cut-back was tried: a shorter step solves the same problem here"), std::string::npos) << c.err;
+  EXPECT_EQ(parse_json(read_text(dir.file("run.json"))).at("cutbacks").number, 0.0);
+  EXPECT_FALSE(looks_like_crash(c.err)) << c.err;
+}
+
+// A scene in mm, N, MPa with a density in kg/m^3 and g in m/s^2: the weight is 1e9 times too large, the first Newton
+// update moves the block by thousands of its sizes and a cell inverts. The failure says so and points at the units.
+TEST(RunErrors, LoadsOutOfScaleWithTheBodyAreNamedWithAUnitsHint) {
+  TempDir dir("errors_units");
+  const std::string scene = dir.file("units.toml");
+  std::string text = read_text(kBase);
+  text.replace(text.find("nu = 0.3"), 8, "nu = 0.3\ndensity = 1000.0");
+  text.replace(text.find("displacement = { y = \"-0.05 * t\" }"), std::string("displacement = { y = \"-0.05 * t\" }").size(), "displacement = { x = 0.0 }");
+  text.replace(text.find("component = \"y\""), 15, "component = \"x\"");  // the top is held in x only
+  text += "\n[body_force]\ny = -9.81\n";
+  write_text(scene, text);
+  const Command c = run_loom({"run", scene, "--quiet", "--out", dir.file("out")});
+  ASSERT_EQ(c.exit_code, 1) << c.err;
+  EXPECT_NE(c.err.find("the first Newton update moved nodes by "), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("times the body's size"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("one system of units"), std::string::npos) << c.err;
+  EXPECT_FALSE(looks_like_crash(c.err)) << c.err;
+}
+
 }  // namespace
 }  // namespace loom::testing

@@ -362,4 +362,72 @@ TEST(SolveNewton, LineSearchTrialsWithoutTangentChangeNoIterate) {
   EXPECT_EQ(plain.tangents, plain_ref.tangents);
 }
 
+// A residual with a floor: r(x) = x - 1 + 1e-7 sin(1e9 x), solved with the tangent 1. Newton lands within 1e-7 of
+// the root at once and then wanders there: with residual_relative = 1e-9 it cannot converge, and says at what
+// level it stagnated and which key to loosen, instead of only "no convergence".
+TEST(SolveNewton, AResidualAtAFloorAboveTheToleranceIsReportedAsStagnated) {
+  ToyProblem p = scalar(
+      2.0, [](double x) { return x - 1.0 + 1e-7 * std::sin(1e9 * x); }, [](double) { return 1.0; });
+  NewtonSettings s;
+  s.residual_relative = 1e-9;
+  s.residual_absolute = 1e-300;
+  s.increment_relative = 0.0;
+  s.max_iterations = 12;
+  Timers timers;
+  const NewtonReport report = solve_newton(p, s, timers);
+  ASSERT_FALSE(report.converged);
+  EXPECT_TRUE(report.stagnated);
+  const double floor = report.stagnation;  // relative to |r_0| = 1
+  EXPECT_GT(floor, 1e-9);
+  EXPECT_LT(floor, 2e-7);
+  EXPECT_NE(report.failure.find("the residual stagnated at "), std::string::npos) << report.failure;
+  EXPECT_NE(report.failure.find("above solver.residual_relative = 1e-09: loosen it (solver.residual_relative = "), std::string::npos)
+      << report.failure;
+}
+
+// Linear convergence is not stagnation: x^3 = 0 from 1 converges with ratio 2/3 per iteration.
+TEST(SolveNewton, SlowButSteadyConvergenceIsNotStagnation) {
+  ToyProblem p = scalar(
+      1.0, [](double x) { return x * x * x; }, [](double x) { return 3.0 * x * x; });
+  NewtonSettings s = strict();
+  s.max_iterations = 12;
+  Timers timers;
+  const NewtonReport report = solve_newton(p, s, timers);
+  ASSERT_FALSE(report.converged);
+  EXPECT_FALSE(report.stagnated) << report.failure;
+  EXPECT_EQ(report.failure.find("stagnated"), std::string::npos) << report.failure;
+  EXPECT_FALSE(residual_stagnated({1.0, 0.3, 0.1, 0.03, 0.01, 0.003}));
+  EXPECT_TRUE(residual_stagnated({1.0, 1e-7, 2e-7, 1.5e-7, 1e-7, 3e-7}));
+  EXPECT_FALSE(residual_stagnated({1.0, 1e-7, 2e-7, 1.5e-7, 1e-7}));  // too few to tell
+}
+
+// A first update of many body sizes followed by an inverted cell: a unit mistake, named as such.
+struct HugeUpdate : ToyProblem {
+  using ToyProblem::ToyProblem;
+  double increment_over_size() const override { return std::abs(du(0)) / 0.1; }  // a body 0.1 long
+};
+
+TEST(SolveNewton, AnInversionAfterAHugeFirstUpdateHintsAtUnits) {
+  HugeUpdate p(
+      vec({0.0}), [](const Eigen::VectorXd& x) { return vec({x(0) - 5e3}); },
+      [](const Eigen::VectorXd&) { return Eigen::MatrixXd::Constant(1, 1, 1.0); });
+  p.admissible = [](const Eigen::VectorXd& x) { return x(0) < 1.0; };
+  Timers timers;
+  const NewtonReport report = solve_newton(p, strict(), timers);
+  ASSERT_FALSE(report.converged);
+  EXPECT_NEAR(report.first_increment_over_size, 5e4, 1e-6);
+  EXPECT_NE(report.failure.find("a cell inverted during the Newton iterations; the first Newton update moved nodes by 5e+04 times the body's size"),
+            std::string::npos)
+      << report.failure;
+  EXPECT_NE(report.failure.find("one system of units"), std::string::npos) << report.failure;
+  // A modest first update gets no such hint.
+  HugeUpdate q(
+      vec({0.0}), [](const Eigen::VectorXd& x) { return vec({x(0) - 0.5}); },
+      [](const Eigen::VectorXd&) { return Eigen::MatrixXd::Constant(1, 1, 1.0); });
+  q.admissible = [](const Eigen::VectorXd& x) { return x(0) < 0.4; };
+  const NewtonReport modest = solve_newton(q, strict(), timers);
+  EXPECT_EQ(modest.failure, "a cell inverted during the Newton iterations");
+}
+
+
 }  // namespace loom

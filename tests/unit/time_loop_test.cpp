@@ -86,5 +86,36 @@ TEST(TimeLoop, AdaptiveStepsEndAtTimeEndWithoutASliver) {
   EXPECT_EQ(short_of_end, 2);
 }
 
+// A step whose status says that a shorter step solves the same problem (a static step under constant loads) is not
+// cut back: the loop stops at once, says why, and counts no cut-back.
+struct SameProblem {
+  StepContext ctx;
+  Timers timers;
+  StepGraph graph{"test", ctx, timers};
+  StepStatus status;
+  std::vector<double> sizes;
+  int store = 0;
+  SameProblem() {
+    graph.add_node("newton", {{}, {&store}}, [this] {
+      sizes.push_back(ctx.dt);
+      status.converged = false;
+      status.failure = "no convergence";
+      status.shorter_step_helps = false;
+    });
+    graph.build();
+  }
+};
+
+TEST(TimeLoop, NoCutBackWhereAShorterStepSolvesTheSameProblem) {
+  SameProblem f;
+  const TimeLoopResult r = run_time_loop(1.0, 3, 5, f.ctx, f.graph, f.status, {}, {1, 0});
+  EXPECT_FALSE(r.completed);
+  EXPECT_TRUE(r.no_cut_back);
+  EXPECT_EQ(r.failed_step, 1);
+  EXPECT_EQ(f.sizes, std::vector<double>{1.0});
+  EXPECT_EQ(f.status.total_cutbacks, 0);
+  EXPECT_NE(r.failure.find("no convergence; no cut-back was tried: a shorter step solves the same problem here"), std::string::npos) << r.failure;
+}
+
 }  // namespace
 }  // namespace loom
