@@ -21,7 +21,7 @@
 
 #include "engine/graph/step_context.hpp"
 #include "engine/linalg/linear_solver.hpp"
-#include "engine/methods/fem_model.hpp"
+#include "engine/methods/model/fem_model.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "engine/timing/timers.hpp"
 #include "systems/assemble/assemble_system.hpp"

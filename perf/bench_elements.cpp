@@ -24,8 +24,8 @@
 #include <string>
 
 #include "engine/drivers/newton.hpp"
-#include "engine/methods/fem_model.hpp"
-#include "engine/methods/fem_newton_problem.hpp"
+#include "engine/methods/model/fem_model.hpp"
+#include "engine/methods/recipes/fem_newton_problem.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "engine/timing/timers.hpp"
 #include "systems/assemble/assemble_system.hpp"

@@ -5,7 +5,7 @@
 // (located, grid activated, projected, loaded, Newmark predictor) and assembled repeatedly.
 #include <benchmark/benchmark.h>
 
-#include "engine/methods/mpm_model.hpp"
+#include "engine/methods/model/mpm_model.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "perf/bench_support.hpp"
 #include "systems/assemble/assemble_grid_system.hpp"

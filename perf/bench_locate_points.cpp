@@ -9,7 +9,7 @@
 
 #include "engine/mesh/tet_background_grid.hpp"
 #include "engine/mesh/tet_generators.hpp"
-#include "engine/methods/mpm_model.hpp"
+#include "engine/methods/model/mpm_model.hpp"
 #include "perf/bench_support.hpp"
 #include "systems/locate/locate_points.hpp"
 

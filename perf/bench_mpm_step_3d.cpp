@@ -5,7 +5,7 @@
 // 1 and 2 threads. Each iteration builds the run (not timed) and runs 2 steps.
 #include <benchmark/benchmark.h>
 
-#include "engine/methods/mpm_method.hpp"
+#include "engine/methods/recipes/mpm_method.hpp"
 #include "perf/bench_support.hpp"
 
 namespace loom {

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "engine/mesh/particle_generators.hpp"
-#include "engine/methods/mpm_method.hpp"
+#include "engine/methods/recipes/mpm_method.hpp"
 #include "perf/bench_support.hpp"
 
 namespace loom {

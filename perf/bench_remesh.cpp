@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/methods/fem_method.hpp"
+#include "engine/methods/recipes/fem_method.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "systems/map/map_state.hpp"
 #include "systems/remesh/remesh.hpp"

@@ -15,7 +15,7 @@
 
 #include <map>
 
-#include "engine/methods/mpm_method.hpp"
+#include "engine/methods/recipes/mpm_method.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace loom::bench {

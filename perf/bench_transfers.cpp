@@ -3,7 +3,7 @@
 // against the number of particles, 1 and 2 threads, on the dynamic Cook's membrane (mixed, Newmark).
 #include <benchmark/benchmark.h>
 
-#include "engine/methods/mpm_model.hpp"
+#include "engine/methods/model/mpm_model.hpp"
 #include "perf/bench_support.hpp"
 #include "systems/map/interpolate_to_particles.hpp"
 #include "systems/map/project_to_grid.hpp"

@@ -24,7 +24,7 @@
 #include "engine/graph/step_context.hpp"
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/linalg/linear_system.hpp"
-#include "engine/methods/fem_model.hpp"
+#include "engine/methods/model/fem_model.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "engine/store/boundary_conditions.hpp"
 #include "engine/store/cells.hpp"

@@ -12,7 +12,7 @@ struct StepStatus {
   int step_iterations = 0;  // summed over the sub-steps of the current scene step
   long long total_iterations = 0;
   int total_cutbacks = 0;   // step halvings over the run (the time loop counts them)
-  // false: a shorter (sub)step would solve the same problem as the one that failed (engine/methods/cut_back_policy.hpp),
+  // false: a shorter (sub)step would solve the same problem as the one that failed (engine/methods/recipes/cut_back_policy.hpp),
   // and the time loop does not cut back.
   bool shorter_step_helps = true;
   std::string failure;

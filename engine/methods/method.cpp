@@ -1,8 +1,8 @@
 #include "engine/methods/method.hpp"
 
 #include "engine/core/errors.hpp"
-#include "engine/methods/fem_method.hpp"
-#include "engine/methods/mpm_method.hpp"
+#include "engine/methods/recipes/fem_method.hpp"
+#include "engine/methods/recipes/mpm_method.hpp"
 
 namespace loom {
 

@@ -153,7 +153,7 @@ struct BodySpec {
   bool j_projection = false;  // es_*, fem_*: b^e's volumetric part from the nodal J after every step (seed 001 eq 56)
   MeshSpec mesh;
   VectorExpression body_force;
-  VectorExpression initial_velocity;  // at t = 0, in the reference position (engine/methods/initial_velocity.hpp)
+  VectorExpression initial_velocity;  // at t = 0, in the reference position (engine/methods/model/initial_velocity.hpp)
   // Method mpm (seed 003):
   int particles_per_cell = 3;  // material points per body cell (triangle_rules)
   Stabilisation stabilisation = Stabilisation::asgs;  // p1p1_up

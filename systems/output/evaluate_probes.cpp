@@ -165,7 +165,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::
       }
     plan.samples.push_back(std::move(samples));
     std::array<Vec2, 2> downstream{Vec2::Zero(), Vec2::Zero()};
-    if (p.inlet != kNoIndex) {  // the section's normal along the inflow (engine/methods/inlet_flow.hpp)
+    if (p.inlet != kNoIndex) {  // the section's normal along the inflow (engine/methods/pfem/inlet_flow.hpp)
       const InletSpec& in = scene.inlets[std::size_t(p.inlet)];
       const Vec2 t = (in.to - in.from).normalized();
       Vec2 n(-t.y(), t.x());

@@ -21,7 +21,7 @@
 #include <sstream>
 #include <limits>
 
-#include "engine/methods/build_mesh.hpp"
+#include "engine/methods/model/build_mesh.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "tests/scenes/scene_checks.hpp"
 #include "tests/support/test_support.hpp"

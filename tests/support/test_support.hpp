@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/methods/fem_method.hpp"
-#include "engine/methods/mpm_method.hpp"
+#include "engine/methods/recipes/fem_method.hpp"
+#include "engine/methods/recipes/mpm_method.hpp"
 #include "engine/scene/scene_spec.hpp"
 
 namespace loom::testing {

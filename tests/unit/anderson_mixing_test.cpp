@@ -1,4 +1,4 @@
-// engine/methods/anderson_mixing: on a linear fixed-point iteration x <- x + f(x), f(x) = (M - I) x + b,
+// engine/methods/recipes/anderson_mixing: on a linear fixed-point iteration x <- x + f(x), f(x) = (M - I) x + b,
 // contracting slowly (spectral radius 0.95), the mixed increments reach the same fixed point as the plain
 // ones in a fraction of the iterations; with a line-search-like partial step the history stays consistent.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "engine/methods/anderson_mixing.hpp"
+#include "engine/methods/recipes/anderson_mixing.hpp"
 
 namespace loom {
 namespace {

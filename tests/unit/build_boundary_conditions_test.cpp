@@ -1,4 +1,4 @@
-// The boundary edges (3D: faces) a traction acts on, as the four builders select them (engine/methods/
+// The boundary edges (3D: faces) a traction acts on, as the four builders select them (engine/methods/model/
 // build_boundary_conditions.cpp, build_solid_3d.cpp, build_particles.cpp, mpm_model_3d.cpp), with and without
 // boundary[].region.normal. The fixture is a beam [0, 1] x [0, 0.1] (3D: x [0, 0.1]) with a traction region that spans
 // its last tenth, [0.9, 1] x [0, 0.1]: the box holds the end x = 1 and the last stretch of the top and bottom (3D: and
@@ -16,9 +16,9 @@
 #include <string>
 
 #include "engine/core/errors.hpp"
-#include "engine/methods/build_boundary_conditions.hpp"
-#include "engine/methods/fem_model.hpp"
-#include "engine/methods/mpm_model.hpp"
+#include "engine/methods/model/build_boundary_conditions.hpp"
+#include "engine/methods/model/fem_model.hpp"
+#include "engine/methods/model/mpm_model.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace loom {

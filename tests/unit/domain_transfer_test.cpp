@@ -1,4 +1,4 @@
-// The history of seed 001's domains across a remesh (engine/methods/domain_transfer.hpp) on the smallest
+// The history of seed 001's domains across a remesh (engine/methods/pfem/domain_transfer.hpp) on the smallest
 // case that changes: a unit square whose diagonal flips from 0-2 to 1-3. Every old edge carries its own b^e,
 // so that a wrong key, index or nearest-edge search shows: the four boundary edges survive and must keep
 // theirs exactly; the new diagonal must take the isochoric part of the old diagonal's (the nearest old
@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "engine/methods/build_domains.hpp"
-#include "engine/methods/domain_transfer.hpp"
+#include "engine/methods/model/build_domains.hpp"
+#include "engine/methods/pfem/domain_transfer.hpp"
 
 namespace loom {
 namespace {

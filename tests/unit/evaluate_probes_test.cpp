@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/methods/fem_model.hpp"
+#include "engine/methods/model/fem_model.hpp"
 #include "systems/output/evaluate_probes.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -1,4 +1,4 @@
-// Particle insertion and removal in the PFEM remesh stage (engine/methods/particle_edits, particle_set), on an
+// Particle insertion and removal in the PFEM remesh stage (engine/methods/pfem/particle_edits, particle_set), on an
 // 8 x 4 block of es_pfem's smoothed u-p triangles and of pfem's p1 triangles:
 //  - insertion at the midpoints of long edges interpolates every nodal field linearly, so a linear field (here a
 //    homogeneous deformation u = A X, velocity v = B X, pressure and J linear in X) is carried exactly, and the
@@ -15,8 +15,8 @@
 #include <string>
 
 #include "engine/mesh/triangle_geometry.hpp"
-#include "engine/methods/fem_model.hpp"
-#include "engine/methods/pfem_remesh.hpp"
+#include "engine/methods/model/fem_model.hpp"
+#include "engine/methods/pfem/pfem_remesh.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace loom {

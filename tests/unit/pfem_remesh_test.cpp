@@ -1,4 +1,4 @@
-// The PFEM remesh stage (engine/methods/pfem_remesh): on the stores FemModel builds from
+// The PFEM remesh stage (engine/methods/pfem/pfem_remesh): on the stores FemModel builds from
 // scenes/constrained_block_pfem.toml (8 x 4 shifted grid on [0, 2] x [0, 1], whose cells are the Delaunay
 // triangles of their points), with the history F_n written by hand:
 //  - an unchanged point cloud changes nothing: same cells in the same order, F_n bit for bit, no
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/methods/fem_model.hpp"
-#include "engine/methods/pfem_remesh.hpp"
+#include "engine/methods/model/fem_model.hpp"
+#include "engine/methods/pfem/pfem_remesh.hpp"
 #include "engine/scene/scene_loader.hpp"
 
 namespace loom {

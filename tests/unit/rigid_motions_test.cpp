@@ -1,8 +1,8 @@
 // free_rigid_motions: the rigid motions that the prescribed components of a static model leave free
-// (engine/methods/rigid_motions.hpp), on a 2 x 1 block of four triangles and on two separate blocks.
+// (engine/methods/model/rigid_motions.hpp), on a 2 x 1 block of four triangles and on two separate blocks.
 #include <gtest/gtest.h>
 
-#include "engine/methods/rigid_motions.hpp"
+#include "engine/methods/model/rigid_motions.hpp"
 
 namespace loom {
 namespace {

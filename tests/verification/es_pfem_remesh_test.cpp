@@ -1,4 +1,4 @@
-// Method es_pfem (seed 001 §3.5): the edges' history across remeshes (engine/methods/domain_transfer.hpp).
+// Method es_pfem (seed 001 §3.5): the edges' history across remeshes (engine/methods/pfem/domain_transfer.hpp).
 //  1. A homogeneous deformation stays exact when the connectivity changes: a block sheared and stretched by
 //     prescribed affine boundary displacements is remeshed before every step, the Delaunay triangulation of
 //     the sheared points flips diagonals, and the new edges take b_bar from the nearest old edge and J from

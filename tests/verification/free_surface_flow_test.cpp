@@ -1,5 +1,5 @@
 // Free-surface flows of the remeshed methods (inflow, surfaces that merge, long runs at rest), es_pfem with the
-// constrained surface (engine/methods/inlet_flow, particle_set; systems/remesh):
+// constrained surface (engine/methods/pfem/inlet_flow, particle_set; systems/remesh):
 //  - inflow into free space (no gravity, no wall): the block and the rows entering behind it move rigidly at the
 //    inlet velocity v, so the area downstream of the section is A_0 + |v.n| L t exactly while the inlet runs
 //    (0.02 m/s through 50 mm, 0.001 m^2/s) and stays A_0 + |v.n| L T after it closes; the mass likewise;

@@ -1,4 +1,4 @@
-// body[].initial_velocity (engine/methods/initial_velocity.hpp). A free body given a uniform velocity v0 and
+// body[].initial_velocity (engine/methods/model/initial_velocity.hpp). A free body given a uniform velocity v0 and
 // no force translates rigidly: F = I, no internal force, zero acceleration, so every integrator's update
 // (Newmark, Bossak, Euler backward on the nodes; Newmark on the MPM grid) keeps v = v0 and gives
 // u(t_n) = v0 t_n at every node or particle, to round-off, with fem, pfem (remeshed every step) and mpm. A

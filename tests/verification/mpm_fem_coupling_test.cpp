@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/methods/mpm_model.hpp"
+#include "engine/methods/model/mpm_model.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace loom {

@@ -40,7 +40,7 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "engine/methods/build_mesh.hpp"
+#include "engine/methods/model/build_mesh.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace loom {

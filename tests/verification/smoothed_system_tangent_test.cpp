@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "engine/methods/fem_model.hpp"
+#include "engine/methods/model/fem_model.hpp"
 #include "systems/assemble/assemble_system.hpp"
 #include "systems/loads/apply_boundary_conditions.hpp"
 #include "tests/support/test_support.hpp"

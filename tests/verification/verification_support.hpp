@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "engine/drivers/newton.hpp"
-#include "engine/methods/fem_model.hpp"
-#include "engine/methods/fem_method.hpp"
-#include "engine/methods/fem_newton_problem.hpp"
+#include "engine/methods/model/fem_model.hpp"
+#include "engine/methods/recipes/fem_method.hpp"
+#include "engine/methods/recipes/fem_newton_problem.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "systems/loads/apply_boundary_conditions.hpp"
 #include "systems/update/commit_step.hpp"
