@@ -30,11 +30,19 @@ std::string short_number(double x) {
 
 }  // namespace
 
+bool residual_still_decreasing(const std::vector<double>& levels) {
+  if (levels.size() < 6) return false;
+  const auto half = levels.begin() + std::ptrdiff_t(levels.size() / 2);
+  return std::adjacent_find(half, levels.end(), [](double a, double b) { return b >= a; }) == levels.end();
+}
+
+// A floor: the later half no better than a decade below the earlier one, and not a slow but steady decrease (a
+// tangent kept for the step converges linearly after a fast start).
 bool residual_stagnated(const std::vector<double>& levels) {
   if (levels.size() < 6) return false;
   const auto half = levels.begin() + std::ptrdiff_t(levels.size() / 2);
   const double earlier = *std::min_element(levels.begin(), half), later = *std::min_element(half, levels.end());
-  return later >= 0.1 * earlier;
+  return later >= 0.1 * earlier && !residual_still_decreasing(levels);
 }
 
 NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& timers) {
@@ -99,13 +107,15 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   // The residual's level against the reference its test uses (the largest over the blocks): converged at
   // residual_relative; one per accepted assembly, for the stagnation test.
   std::vector<double> levels;
+  // A residual (block) already below residual_absolute has converged: level 0.
   auto note_level = [&](double res) {
-    double level = res / std::max({r0, p.force_scale(), 1e-300});
+    double level = res <= s.residual_absolute ? 0.0 : res / std::max({r0, p.force_scale(), 1e-300});
     if (p.blocks() > 1) {
       level = 0.0;
       for (int b = 0; b < p.blocks(); ++b) {
+        const double n = p.block_norm(b);
         const double reference = b == 0 ? std::max(momentum_0, p.force_scale()) : block_reference[std::size_t(b)];
-        level = std::max(level, p.block_norm(b) / std::max(reference, 1e-300));
+        if (n > s.residual_absolute) level = std::max(level, n / std::max(reference, 1e-300));
       }
     }
     levels.push_back(level);
@@ -128,7 +138,7 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
     iteration_mark.set(it);
     if (!have_tangent) {  // lazy tangent: the residual alone did not converge
       ScopedTimer t(timers, "newton/assemble");
-      if (!p.assemble(true)) return fail("a cell inverted during the Newton iterations");
+      if (!p.assemble(true)) return fail("a cell inverted during the Newton iterations" + units_hint());
       have_tangent = true;
     }
     iteration = it;
@@ -180,7 +190,14 @@ NewtonReport solve_newton(NonlinearProblem& p, const NewtonSettings& s, Timers& 
   // The best of the later half: the floor the iterations reached. Only a floor of round-off size is named (far
   // above it, the iterations cycle: a message about the tolerance would mislead).
   const double floor = levels.empty() ? 0.0 : *std::min_element(levels.begin() + std::ptrdiff_t(levels.size() / 2), levels.end());
-  if (residual_stagnated(levels) && floor <= 1e-4) {
+  // A floor at or below the tolerance did not stop the iterations (a prescribed value still being applied): no
+  // advice about the tolerance then.
+  if (residual_still_decreasing(levels)) {
+    const auto half = levels.begin() + std::ptrdiff_t(levels.size() / 2);
+    const double factor = std::pow(levels.back() / *half, 1.0 / double(levels.end() - half - 1));
+    os << ": the residual was still decreasing, by a factor of " << short_number(factor)
+       << " per iteration: raise solver.max_iterations (or, with solver.tangent = \"once_per_step\", use every_iteration)";
+  } else if (residual_stagnated(levels) && floor <= 1e-4 && floor > s.residual_relative) {
     report.stagnated = true;
     report.stagnation = floor;
     os << ": the residual stagnated at " << short_number(floor) << " relative to the forces in balance, above solver.residual_relative = "

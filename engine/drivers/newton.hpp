@@ -84,8 +84,10 @@ struct NewtonReport {
 };
 
 // Whether residual levels (each relative to its reference, one per accepted assembly after the first) stopped
-// falling: at least 6 of them, the best of the later half not a decade below the best of the earlier half.
+// falling: at least 6 of them, the best of the later half not a decade below the best of the earlier half, and
+// the later half not still falling at every iteration (residual_still_decreasing: slow linear convergence).
 bool residual_stagnated(const std::vector<double>& levels);
+bool residual_still_decreasing(const std::vector<double>& levels);
 
 NewtonReport solve_newton(NonlinearProblem& problem, const NewtonSettings& settings, Timers& timers);
 

@@ -36,10 +36,11 @@ TimeLoopResult drive_run(const RunSchedule& schedule, StepContext& ctx, StepGrap
   };
   // The periodic checkpoint is written after time.stop_when has looked at the step, so that it holds the window
   // that the step's reading entered.
+  // A run that settles on a checkpoint step still writes that step's checkpoint.
   callbacks.settled = [&](const StepContext& c) {
-    if (hooks.settled && hooks.settled(c)) return true;
+    const bool settled = hooks.settled && hooks.settled(c);
     if (schedule.checkpoint_every > 0 && c.step % schedule.checkpoint_every == 0) checkpoint(c.step);
-    return false;
+    return settled;
   };
   callbacks.step_size = hooks.step_size;
   callbacks.end_time = hooks.end_time;

@@ -22,7 +22,7 @@ struct RunSchedule {
   int max_cutbacks = 0;
   bool progress = true;          // one-line progress display on stderr
   std::ostream* log = nullptr;   // cut-back messages; nullptr: silent
-  int checkpoint_every = 0;      // steps between checkpoints; 0: none (but at a stop_after)
+  int checkpoint_every = 0;      // steps between checkpoints; 0: none (but at a stop_after or an interrupt)
   bool restarted = false;        // continued from the checkpoint of step first_step - 1 (step 0 is not written again)
   int first_step = 1;
   int stop_after = 0;            // stop after this step as if interrupted (0: run to the end)

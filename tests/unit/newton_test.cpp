@@ -401,6 +401,30 @@ TEST(SolveNewton, SlowButSteadyConvergenceIsNotStagnation) {
   EXPECT_FALSE(residual_stagnated({1.0, 1e-7, 2e-7, 1.5e-7, 1e-7}));  // too few to tell
 }
 
+// A fast start and then a tangent ten times too stiff (a kept tangent, say): the residual falls to ~1e-6 and then
+// by 0.9 per iteration. The later half is no decade below the earlier one, but it falls at every iteration: that
+// is slow convergence (raise max_iterations), not a floor (loosen the tolerance).
+TEST(SolveNewton, AFastStartThenLinearConvergenceIsNotStagnation) {
+  ToyProblem p = scalar(
+      2.0, [](double x) { return x - 1.0 + 0.1 * (x - 1.0) * (x - 1.0); },
+      [](double x) { return std::abs(x - 1.0) > 1e-5 ? 1.0 + 0.2 * (x - 1.0) : 10.0; });
+  NewtonSettings s = strict();
+  s.residual_relative = 1e-12;
+  s.max_iterations = 20;
+  Timers timers;
+  const NewtonReport report = solve_newton(p, s, timers);
+  ASSERT_FALSE(report.converged);
+  ASSERT_GE(report.residuals.size(), 20u);
+  const double last = report.residuals.back(), tenth = report.residuals[9];
+  EXPECT_GT(last, 0.1 * tenth) << "the later half fell by a decade: the test shows nothing";
+  EXPECT_FALSE(report.stagnated) << report.failure;
+  EXPECT_NE(report.failure.find("the residual was still decreasing, by a factor of 0.9 per iteration: raise solver.max_iterations"),
+            std::string::npos)
+      << report.failure;
+  EXPECT_TRUE(residual_still_decreasing({1.0, 1e-5, 9e-6, 8.1e-6, 7.3e-6, 6.6e-6}));
+  EXPECT_FALSE(residual_stagnated({1.0, 1e-5, 9e-6, 8.1e-6, 7.3e-6, 6.6e-6}));
+}
+
 // A first update of many body sizes followed by an inverted cell: a unit mistake, named as such.
 struct HugeUpdate : ToyProblem {
   using ToyProblem::ToyProblem;

@@ -7,7 +7,8 @@
 //    no boundary edge crosses another at any step (the remesh's crossings probe reads the polygon of each step);
 //  - a block resting on a stick ground, remeshed before each of 10^4 steps: once the elastic sag has settled, it
 //    stays where it is (no creep), its mass and area unchanged;
-//  - time.stop_when ends a run as completed once its probe has fallen below the bound.
+//  - time.stop_when ends a run as completed once its probe has fallen below the bound (and writes the checkpoint
+//    of that step if it is one of output.checkpoint_every's).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -222,6 +223,17 @@ TEST(StopWhen, EndsTheRunOnceTheProbeFallsBelowItsBound) {
   char frame[32];
   std::snprintf(frame, sizeof frame, "settle_%06d.vtu", summary.steps_done);
   EXPECT_TRUE(std::filesystem::exists(dir.file(frame))) << frame << " (the settled state) was not written";
+
+  // A run that settles on a step of its checkpoints writes that checkpoint too.
+  testing::TempDir again("stop_when_checkpoint");
+  auto checkpointed = testing::make_fem_run(
+      testing::scene_from_text(text, {"output.checkpoint_every=" + std::to_string(summary.steps_done)}), again.path());
+  const RunSummary second = checkpointed->run();
+  ASSERT_TRUE(second.settled) << second.failure;
+  EXPECT_EQ(second.steps_done, summary.steps_done);
+  char checkpoint[48];
+  std::snprintf(checkpoint, sizeof checkpoint, "checkpoint_%06d.loom", summary.steps_done);
+  EXPECT_TRUE(std::filesystem::exists(again.file(checkpoint))) << checkpoint << " (the settled step's) was not written";
 }
 
 // The same with the top's rate of change: it stops once the top has moved by less than 1e-6 m/s * 0.5 s in the last

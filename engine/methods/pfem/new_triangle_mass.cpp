@@ -127,6 +127,11 @@ void share_mass_to_new_triangles(const DomainSnapshot& old, const Nodes<2>& node
     Cells& c = cells[fresh[k].block];
     const Index t = fresh[k].cell;
     const std::size_t p = patch[k];
+    if (!(mass[p] > 0.0 && area[p] > 0.0)) {  // a patch that nothing gave mass to: the particles' volume, A_n / J_e
+      const double J_e = (nodes.J_node[c.node(t, 0)] + nodes.J_node[c.node(t, 1)] + nodes.J_node[c.node(t, 2)]) / 3.0;
+      c.measure[t] = area_n(c, t) / J_e;
+      continue;
+    }
     c.measure[t] = tiles[p] ? area_0(c, t) * (mass[p] / reference[p]) : area_n(c, t) * (mass[p] / area[p]) / rho(c, t);
   }
 }

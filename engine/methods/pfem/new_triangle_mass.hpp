@@ -16,6 +16,12 @@
 // flips: sharing each particle's lost mass by area among all the patches around it moved mass between
 // neighbouring patches (volume ratios off by up to 18 % where a straightening beam flipped a row of squares, the
 // energy that an undamped integrator then kept; docs/free_surface.md).
+// Where the body's mass is not kept exactly (docs/free_surface.md §2.7): a removed triangle whose region no fresh
+// triangle at its own corners covers (a cavity of six or more particles re-triangulated) goes through step 2, its
+// mass conserved but its patch no longer tiling; a particle with no fresh triangle loses its D_a (a boundary
+// triangle removed by the alpha shape between kept ones); a particle whose kept and matched triangles hold more
+// than M_a is not charged the excess (D_a is clamped at 0); and a patch that nothing gave mass to takes the
+// particles' volume, A_n / J_e, rather than a zero area.
 #pragma once
 
 #include <vector>

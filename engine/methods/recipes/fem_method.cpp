@@ -311,6 +311,13 @@ void FemRunT<D>::describe(std::ostream& os) const {
      << linear_solver_name(m_.linear_solver)
      << "\n";
   os << "  boundary_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, "
+  // The residual of a tied mid-node (PFEM TRI6, TET10) went to its masters (T^T r), so its mass goes with it: each
+  // master's mass is the row sum of T^T M T, m_a + sum over its ties of m_mid / 2 (a uniform g then gives a_0 = g).
+  std::vector<double> mass(std::size_t(dofs.n_dofs()), 0.0);
+  for (Index i = 0; i < m_.nodes.size(); ++i)
+    for (int d = 0; d < D; ++d) mass[std::size_t(dofs.dof(i, d))] = m_.nodes.lumped_mass[i];
+  for (const Tie& tie : dofs.ties)
+    for (Index master : tie.master) mass[std::size_t(master)] += 0.5 * m_.nodes.lumped_mass[tie.dof / dofs.per_node];
      << (D == 3 ? m_.bc.traction_faces.size() : m_.bc.traction_edges.size()) << (D == 3 ? " traction faces" : " traction edges") << ", loads " << (m_.bc.has_loads ? (m_.bc.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
   graph_->print(os);
 }
@@ -328,10 +335,10 @@ void FemRunT<D>::set_equilibrium_acceleration() {
   for (Index i = 0; i < m_.nodes.size(); ++i)
     for (int d = 0; d < D; ++d) {
       const Index dof = dofs.dof(i, d);
-      const double m = m_.nodes.lumped_mass[i];
+      const double m = mass[std::size_t(dof)];
       m_.nodes.a_n[i][d] = dofs.kind[std::size_t(dof)] == DofKind::free && m > 0.0 ? -m_.system.residual_full[dof] / m : 0.0;
     }
-  // A tied mid-node (PFEM TRI6) follows its masters, so that the integrator stays linear in the tie.
+  // A tied mid-node follows its masters, so that the integrator stays linear in the tie.
   for (const Tie& tie : dofs.ties) {
     const int d = tie.dof % dofs.per_node;
     if (d < D)

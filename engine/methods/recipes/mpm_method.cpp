@@ -307,8 +307,8 @@ void MpmRunT<D>::initial_acceleration() {
   }
 }
 
-// mpm_fem: the FEM bodies start undeformed (f_int = 0), so a_0 = M^-1 f_ext with the lumped mass is the body force
-// b(X) at every free dof of their nodes and 0 at the held ones (a clamped plate's free nodes start falling at g, as
+// mpm_fem: the FEM bodies start undeformed (f_int = 0), so a_0 = M^-1 f_ext with the lumped mass is rho b(X) / rho_i
+// (b with the material's inertia) at every free dof of their nodes and 0 at the held ones (a clamped plate's free nodes start falling at g, as
 // its lumped equations say; the consistent mass the step uses differs only next to the held nodes).
 template <int D>
 void MpmRunT<D>::fem_nodes_equilibrium_acceleration() {
@@ -319,10 +319,16 @@ void MpmRunT<D>::fem_nodes_equilibrium_acceleration() {
       for (int a = 0; a < m_.grid.stride; ++a) body[std::size_t(m_.grid.node(c, a))] = m_.grid.body[c];
     for (Index i = 0; i < g.size(); ++i) {
       if (!m_.coupled_mesh.fem_node[std::size_t(i)] || body[std::size_t(i)] == kNoIndex) continue;
-      const auto& e = m_.bc.body_force[std::size_t(body[std::size_t(i)])];
+      const Index b = body[std::size_t(i)];
+      const auto& e = m_.bc.body_force[std::size_t(b)];
+      // The cell's force is rho b and its inertia rho_i (1 with inertia = "unit_density"): a_0 = rho b / rho_i.
+      const BodySpec& spec = scene_.bodies[std::size_t(b)];
+      const double density = scene_.materials[std::size_t(spec.material)].density;
+      const double force_per_inertia = spec.unit_inertia ? density : 1.0;
       const Vec2 X = g.X[i] - g.u_n[i];
       for (int d = 0; d < 2; ++d)
-        g.a[i][d] = e[std::size_t(d)] == kNoIndex ? 0.0 : m_.bc.expressions[std::size_t(e[std::size_t(d)])](0.0, X.x(), X.y());
+        g.a[i][d] =
+            e[std::size_t(d)] == kNoIndex ? 0.0 : force_per_inertia * m_.bc.expressions[std::size_t(e[std::size_t(d)])](0.0, X.x(), X.y());
     }
     for (const auto& p : m_.bc.prescribed)
       if (p.dof % m_.bc.per_node < 2 && m_.coupled_mesh.fem_node[std::size_t(p.node)]) g.a[p.node][p.dof % m_.bc.per_node] = 0.0;

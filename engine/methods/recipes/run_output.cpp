@@ -9,6 +9,13 @@
 
 namespace loom {
 
+namespace {
+std::string stop_probe_name(const SceneSpec& scene) {
+  const Index p = scene.time.stop_probe;
+  return p == kNoIndex ? std::string() : scene.probes[std::size_t(p)].name;
+}
+}  // namespace
+
 CheckpointHeader checkpoint_header(const std::string& method, const StepContext& ctx, const StepStatus& status, const SceneSpec& scene,
                                    const LinearSolve& solver, double last_frame_time, const PvdWriter& pvd,
                                    const std::vector<double>& probe_values, const StopCondition& stop) {
@@ -24,6 +31,7 @@ CheckpointHeader checkpoint_header(const std::string& method, const StepContext&
   h.frames = pvd.entries();
   h.probe_values = probe_values;
   h.stop_history = stop.history();
+  h.stop_probe = stop_probe_name(scene);
   return h;
 }
 
@@ -78,6 +86,7 @@ void write_checkpoint_header(CheckpointWriter& w, const CheckpointHeader& h) {
   }
   w.vector("run/probe_values", h.probe_values);
   w.vector("run/stop_history", h.stop_history);
+  w.text("run/stop_probe", h.stop_probe);
 }
 
 CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSpec& scene, std::ostream* log) {
@@ -104,9 +113,14 @@ CheckpointHeader read_checkpoint_header(const CheckpointReader& r, const SceneSp
     const std::string key = "run/frame/" + std::to_string(k);
     h.frames.push_back({r.value<double>(key + "/time"), r.text(key + "/file"), r.value<int>(key + "/part")});
   }
-  r.vector("run/probe_values", h.probe_values);
-  r.vector("run/stop_history", h.stop_history);
-  if (h.probe_values.size() != scene.probes.size()) h.probe_values.clear();  // the scene's probes changed (warned above)
+  // Checkpoints of loom before 2026-12 hold neither the probes' values nor time.stop_when's window: their runs
+  // continue with time.dt for a first adaptive step and a stop condition that starts looking afresh.
+  if (r.has("run/probe_values")) r.vector("run/probe_values", h.probe_values);
+  if (r.has("run/stop_history")) r.vector("run/stop_history", h.stop_history);
+  if (r.has("run/stop_probe")) h.stop_probe = r.text("run/stop_probe");
+  // ProbeWriter::reopen refuses another set of probes; time.stop_when may watch another one of them now.
+  if (h.probe_values.size() != scene.probes.size()) h.probe_values.clear();
+  if (h.stop_probe != stop_probe_name(scene)) h.stop_history.clear();
   return h;
 }
 

@@ -1,6 +1,7 @@
 // What the recipes share about a run's files: opening the output (a fresh run, or a restarted one that
 // keeps what its checkpoint had written) and the part of a checkpoint that is not a store -- the step and
-// time, the run's totals, the linear solver in use and the frames of the collection.
+// time, the run's totals, the linear solver in use, the frames of the collection, the step's probe values and
+// time.stop_when's window.
 #pragma once
 
 #include <functional>
@@ -13,8 +14,8 @@
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/probe_writer.hpp"
 #include "engine/io/pvd_writer.hpp"
-#include "engine/methods/method.hpp"
 #include "engine/linalg/linear_solver.hpp"
+#include "engine/methods/method.hpp"
 #include "engine/scene/scene_spec.hpp"
 
 namespace loom {
@@ -31,6 +32,7 @@ struct CheckpointHeader {
   // restarted run goes on with them as the run it continues would have.
   std::vector<double> probe_values;
   StopCondition::History stop_history;
+  std::string stop_probe;  // the probe time.stop_when watched (a continued run watching another one starts afresh)
 };
 
 // The header of a checkpoint of the step that just completed.
