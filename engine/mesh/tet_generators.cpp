@@ -85,6 +85,59 @@ TetMeshData generate_box(const BoxSpec& spec) {
   return mesh;
 }
 
+TetMeshData generate_bcc_box(const BoxSpec& spec) {
+  if (spec.nx < 1 || spec.ny < 1 || spec.nz < 1) throw std::invalid_argument("generate_bcc_box: divisions must be >= 1");
+  TetMeshData mesh = generate_box(spec);
+  mesh.tets.clear();
+  const int n[3] = {spec.nx, spec.ny, spec.nz};
+  const int sx = spec.nx + 1, sy = spec.ny + 1;
+  auto corner = [&](const std::array<int, 3>& c) { return Index(c[0] + sx * (c[1] + sy * c[2])); };
+  const Index first_centre = Index(mesh.X.size());
+  auto centre = [&](const std::array<int, 3>& c) { return first_centre + Index(c[0] + spec.nx * (c[1] + spec.ny * c[2])); };
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i)
+        mesh.X.push_back(spec.origin + Vec3(spec.size.x() * (i + 0.5) / spec.nx, spec.size.y() * (j + 0.5) / spec.ny, spec.size.z() * (k + 0.5) / spec.nz));
+  // Each cube's face across axis a, on its low (s = 0) or high (s = 1) side: its four corners in cyclic order.
+  auto face_corners = [&](const std::array<int, 3>& cube, int a, int s) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    std::array<Index, 4> f;
+    static constexpr int kCycle[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int q = 0; q < 4; ++q) {
+      std::array<int, 3> p = cube;
+      p[std::size_t(a)] += s, p[std::size_t(b)] += kCycle[q][0], p[std::size_t(c)] += kCycle[q][1];
+      f[std::size_t(q)] = corner(p);
+    }
+    return f;
+  };
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        const std::array<int, 3> cube = {i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          // The high face: an octahedron with the next cube's centre, or a pyramid on the box's face.
+          const std::array<Index, 4> f = face_corners(cube, a, 1);
+          std::array<int, 3> next = cube;
+          ++next[std::size_t(a)];
+          if (next[std::size_t(a)] < n[a]) {
+            for (int q = 0; q < 4; ++q) add_tet(mesh, centre(cube), centre(next), f[std::size_t(q)], f[std::size_t((q + 1) % 4)]);
+          } else {
+            const int lo = int(std::min_element(f.begin(), f.end()) - f.begin());
+            const Index p0 = f[std::size_t(lo)], p1 = f[std::size_t((lo + 1) % 4)], p2 = f[std::size_t((lo + 2) % 4)], p3 = f[std::size_t((lo + 3) % 4)];
+            add_tet(mesh, centre(cube), p0, p1, p2), add_tet(mesh, centre(cube), p0, p2, p3);
+          }
+          // The low face on the box's face: a pyramid (interior low faces are the previous cube's high faces).
+          if (cube[std::size_t(a)] == 0) {
+            const std::array<Index, 4> g = face_corners(cube, a, 0);
+            const int lo = int(std::min_element(g.begin(), g.end()) - g.begin());
+            const Index p0 = g[std::size_t(lo)], p1 = g[std::size_t((lo + 1) % 4)], p2 = g[std::size_t((lo + 2) % 4)], p3 = g[std::size_t((lo + 3) % 4)];
+            add_tet(mesh, centre(cube), p0, p1, p2), add_tet(mesh, centre(cube), p0, p2, p3);
+          }
+        }
+      }
+  return mesh;
+}
+
 TetMeshData extrude(const MeshData& mesh, double depth, int layers) {
   if (layers < 1 || !(depth > 0.0)) throw std::invalid_argument("extrude: needs layers >= 1 and depth > 0");
   std::vector<Index> triangles = mesh.triangles;

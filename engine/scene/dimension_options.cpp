@@ -1,5 +1,7 @@
 #include "engine/scene/dimension_options.hpp"
 
+#include <algorithm>
+
 namespace loom {
 
 void check_element_dimension(int dimension, Method method, const std::string& element, const TableReader& body) {
@@ -20,6 +22,7 @@ void check_element_dimension(int dimension, Method method, const std::string& el
 void read_mesh_dimension(int dimension, const TableReader& mesh, MeshSpec& m) {
   if (!mesh.present()) return;
   const bool box = mesh.string("generator") == "box";
+  if (dimension == 2 && mesh.has("lattice")) mesh.error("lattice", "lattice is a choice of the 3D generator box (scene.dimension = 3)");
   if (dimension == 2) {
     if (box) mesh.error("generator", "box is a 3D generator (scene.dimension = 3); in 2D use rectangle");
     if (mesh.has("depth")) mesh.error("depth", "depth extrudes a mesh into 3D: it needs scene.dimension = 3");
@@ -35,9 +38,11 @@ void read_mesh_dimension(int dimension, const TableReader& mesh, MeshSpec& m) {
     if (mesh.has("divisions") && m.nz < 1) mesh.error("divisions", "divisions must be >= 1");
     if (mesh.has("divisions") && double(m.nx) * m.ny * m.nz * 6 > 5e7) mesh.error("divisions", "more than 5e7 tetrahedra requested");
     for (const char* k : {"depth", "pattern"})
-      if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"box\" (its cells are Kuhn tetrahedra of a hexahedral lattice)");
+      if (mesh.has(k)) mesh.error(k, std::string(k) + " is not used by generator = \"box\" (its cells are Kuhn tetrahedra or a BCC lattice)");
+    m.bcc = mesh.has("lattice") && mesh.string("lattice") == "bcc";
     return;
   }
+  if (mesh.has("lattice")) mesh.error("lattice", "lattice is a choice of generator = \"box\"");
   // rectangle and cooks_membrane: the plane mesh extruded along z.
   if (!mesh.has("depth")) mesh.error("", "missing key depth: in 3D a rectangle or cooks_membrane mesh is extruded along z (or use generator = \"box\")");
   m.depth = mesh.real("depth");
@@ -52,8 +57,8 @@ void read_mesh_dimension(int dimension, const TableReader& mesh, MeshSpec& m) {
 void check_dimension_support(const SceneSpec& s, const TableReader& root) {
   if (s.scene.dimension != 3) return;
   const auto scene = root.table("scene");
-  if (s.scene.method != Method::fem && s.scene.method != Method::mpm)
-    scene.error("method", std::string("scene.dimension = 3 is implemented for methods fem and mpm; method ") + method_name(s.scene.method) +
+  if (s.scene.method != Method::fem && s.scene.method != Method::mpm && s.scene.method != Method::pfem)
+    scene.error("method", std::string("scene.dimension = 3 is implemented for methods fem, pfem and mpm; method ") + method_name(s.scene.method) +
                               " is two-dimensional");
   if (s.scene.method == Method::mpm) {
     const auto grid = root.table("grid");
@@ -66,6 +71,17 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b)
       if (s.bodies[b].particles.kind != ParticleGenerator::none)
         bodies[b].error("particles", "generated particle sets are two-dimensional; a 3D mpm body samples its tetrahedral mesh (particles_per_cell)");
+  }
+  if (s.scene.method == Method::pfem) {
+    // A body one cell across has no particle inside: its every cell touches the surface, the remesh has nothing to hold
+    // it by (a lattice of at least two cells each way).
+    const auto bodies = root.array("body");
+    for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
+      const MeshSpec& m = s.bodies[b].mesh;
+      if (m.generator == MeshGenerator::box && std::min({m.nx, m.ny, m.nz}) < 2)
+        bodies[b].table("mesh").error("divisions", "method pfem in 3D needs at least two cells of the lattice along x, y and z (one layer "
+                                                   "has no particle inside for the remesh to hold the body by)");
+    }
   }
   for (const char* t : {"wall", "inlet"})
     if (root.has(t)) root.error(t, std::string("[[") + t + "]] is two-dimensional (scene.dimension = 3)");

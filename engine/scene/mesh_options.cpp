@@ -18,7 +18,7 @@ void read_mesh_file(const TableReader& mesh, MeshSpec& m) {
   if (file.empty()) mesh.error("file", "must not be empty");
   m.surface = mesh.string("group");
   m.scale = mesh.real("scale");
-  for (const char* k : {"generator", "divisions", "origin", "size", "pattern", "distortion", "seed"})
+  for (const char* k : {"generator", "divisions", "origin", "size", "pattern", "distortion", "seed", "lattice"})
     if (mesh.has(k)) mesh.error(k, std::string(k) + " belongs to the generators; a mesh file takes file, group and scale");
 }
 

@@ -41,6 +41,21 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
   for (std::size_t i = 0; i < s.walls.size() && i < walls.size(); ++i)
     if (s.walls[i].spacing > 0.0 && !(s.pfem.insert_above > 0.0))
       walls[i].error("spacing", "a spacing at the wall is made by particle insertion, which is off (set remesh.insert_above > 0)");
+  s.pfem.keep_delaunay = remesh.boolean("keep_delaunay");
+  s.pfem.flip_quality = remesh.real("flip_quality");
+  if (s.scene.dimension == 3) {
+    // The 3D remesh keeps the cells inside the previous mesh (systems/remesh/remesh_3d.hpp): no constrained Delaunay to
+    // choose between, no particle edits yet.
+    for (const char* k : {"surface", "insert_above", "remove_below", "spacing"})
+      if (remesh.has(k)) remesh.error(k, std::string("remesh.") + k + " is two-dimensional (scene.dimension = 3 keeps the cells inside the "
+                                                                       "previous mesh and adds or removes no particles)");
+    // A tetrahedron of a regular lattice has a circumradius about its edge length: below alpha = 1 the alpha test
+    // would tear every body apart.
+    if (s.pfem.alpha < 1.0) remesh.error("alpha", "in 3D alpha must be >= 1: below, the alpha test tears a regular lattice's cells apart");
+  } else {
+    for (const char* k : {"keep_delaunay", "flip_quality"})
+      if (remesh.has(k)) remesh.error(k, std::string("remesh.") + k + " is used by the 3D remesh (scene.dimension = 3) only");
+  }
   s.pfem.btm = map.string("scheme") == "btm";
   s.pfem.iso = int(map.integer("iso"));
   if (!s.pfem.btm && map.has("iso") && s.pfem.iso != 0) map.error("iso", "iso is used by scheme = \"btm\" only (CPM copies F as it is)");

@@ -24,7 +24,8 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
                {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated},
                {"merged", RemeshQuantity::merged}, {"crossings", RemeshQuantity::crossings}, {"inserted", RemeshQuantity::inserted},
-               {"removed", RemeshQuantity::removed}});
+               {"removed", RemeshQuantity::removed}, {"flipped", RemeshQuantity::flipped}, {"slivers", RemeshQuantity::slivers},
+               {"capped", RemeshQuantity::capped}});
   const std::string component = t.string("component");
   p.component = component == "y" ? 1 : component == "z" ? 2 : 0;
   if (component == "z" && s.scene.dimension < 3) t.error("component", "component z in a two-dimensional scene (scene.dimension = 2)");

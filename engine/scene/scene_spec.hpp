@@ -36,7 +36,7 @@ enum class MeshGenerator { rectangle, cooks_membrane, file, box };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
                        angular_momentum };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
-enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed };
+enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed, flipped, slivers, capped };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
 struct ExpressionSpec {
@@ -121,6 +121,7 @@ struct MeshSpec {
   int nz = 1;
   double depth = 0.0;
   int layers = 1;
+  bool bcc = false;  // generator box: the body-centred cubic lattice instead of Kuhn cubes (mesh.lattice)
 };
 
 struct VectorExpression {
@@ -268,6 +269,10 @@ struct PfemSpec {
   // Particle insertion and removal (factors of the body's spacing h0; 0: off), h0 (0: each body's initial mean
   // edge length).
   double insert_above = 0.0, remove_below = 0.0, spacing = 0.0;
+  // 3D (systems/remesh/remesh_3d.hpp): keep a mesh that is still Delaunay (R3.7); the quality 3 r_in / R below which
+  // cells are improved by flips (R3.4; 0: none).
+  bool keep_delaunay = true;
+  double flip_quality = 0.2;
 };
 
 struct OutputSpec {

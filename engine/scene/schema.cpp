@@ -174,6 +174,10 @@ std::vector<KeySpec> build_schema() {
                   "size, divisions: a lattice of hexahedra each cut into six Kuhn tetrahedra), or rectangle and cooks_membrane "
                   "extruded along z over depth in divisions[2] layers (each prism cut into three tetrahedra, diagonals consistent between neighbours).")
                   .one_of({"rectangle", "cooks_membrane", "box"}).require_unless("file"));
+  s.push_back(key("body[].mesh.lattice", K::choice,
+                  "3D box: kuhn (six Kuhn tetrahedra per cube of the lattice), or bcc (the body-centred cubic lattice: the cube corners "
+                  "and centres, whose Delaunay cells are congruent and unique inside the box, 3 r_in / R = 0.949; the lattice for method "
+                  "pfem, whose remesh would otherwise choose anew between the cospherical Kuhn cells).").one_of({"kuhn", "bcc"}).by_default("kuhn"));
   s.push_back(key("body[].mesh.depth", K::real,
                   "3D: extrude the 2D generator's mesh from z = 0 to z = depth in divisions[2] layers (required with rectangle and "
                   "cooks_membrane in 3D).").above(0));
@@ -336,8 +340,10 @@ std::vector<KeySpec> build_schema() {
                   "rejected (triangles removed by the alpha test), isolated (particles in no triangle), merged (remesh.surface = "
                   "constrained: triangles added where two surfaces met), crossings (boundary edges left out of the constraints because "
                   "they crossed another), inserted and removed (particles added and taken away by remesh.insert_above, "
-                  "remesh.remove_below and [[inlet]]s).")
-                  .one_of({"area_change", "changed", "rejected", "isolated", "merged", "crossings", "inserted", "removed"}));
+                  "remesh.remove_below and [[inlet]]s). 3D (cells are tetrahedra, areas volumes): flipped (flips that removed slivers), "
+                  "slivers (tetrahedra still below 0.1 in 3 r_in / R after them), capped (flat cells on the previous surface left out).")
+                  .one_of({"area_change", "changed", "rejected", "isolated", "merged", "crossings", "inserted", "removed", "flipped", "slivers",
+                           "capped"}));
   s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total", "potential", "mechanical"}).by_default("total"));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));

@@ -93,6 +93,13 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "one is removed (an interior one rather than one on the surface; never one with a prescribed displacement or load); "
                   "0: off. 0.3 is a common choice.")
                   .by_default("0").at_least(0).below(1));
+  s.push_back(key("remesh.keep_delaunay", K::boolean,
+                  "3D: keep the previous mesh as it is when it is still Delaunay at the particles' positions, no cell of it would tear "
+                  "and no two surfaces are closer than alpha l_char: a body at rest costs no triangulation and does not churn between "
+                  "equivalent meshes of cospherical points.").by_default("true"));
+  s.push_back(key("remesh.flip_quality", K::real,
+                  "3D: tetrahedra whose 3 r_in / R (1 regular, 0 flat) is below this are improved by flips with the particles fixed "
+                  "(2-3, 3-2, edge removal; the surface untouched); 0: none.").by_default("0.2").at_least(0).below(1));
   s.push_back(key("remesh.spacing", K::real,
                   "Spacing h0 that insert_above and remove_below multiply (0: each body's mean edge length at the start).")
                   .by_default("0").at_least(0));

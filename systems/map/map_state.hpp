@@ -40,4 +40,13 @@ void map_state(const std::vector<Vec2>& old_positions, const std::vector<Mat3>& 
 // r_in / r_circ of a triangle (1/2 for an equilateral one, 0 for a degenerate one).
 double radius_ratio(const Vec2& a, const Vec2& b, const Vec2& c);
 
+// The same on tetrahedra (map_state_3d.cpp): a Delaunay_triangulation_3 of the old points, four barycentric weights,
+// and the fallback where the background tetrahedron's 3 r_in / r_circ (1 for a regular one) is below
+// 2 min_radius_ratio: 1 % of the regular simplex in both dimensions.
+void map_state(const std::vector<Vec3>& old_positions, const std::vector<Mat3>& old_F, const std::vector<Vec3>& new_positions,
+               const std::vector<Index>& copy_from, const MapSettings& settings, std::vector<Mat3>& new_F, MapStats& stats);
+
+// 3 r_in / r_circ of a tetrahedron (1 for a regular one, 0 for a degenerate one).
+double radius_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
 }  // namespace loom

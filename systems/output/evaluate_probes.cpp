@@ -234,6 +234,9 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
           case RemeshQuantity::crossings: values[k] = remesh.crossings; break;
           case RemeshQuantity::inserted: values[k] = remesh.inserted; break;
           case RemeshQuantity::removed: values[k] = remesh.removed; break;
+          case RemeshQuantity::flipped: values[k] = remesh.flipped; break;
+          case RemeshQuantity::slivers: values[k] = remesh.slivers; break;
+          case RemeshQuantity::capped: values[k] = remesh.capped; break;
         }
         break;
       case ProbeKind::wall_force: {

@@ -43,6 +43,7 @@ const std::map<std::string, Case>& cases() {
       {"column_twisting_mpm", {3, {"body[0].mesh.divisions=[2,2,12]", "grid.divisions=[8,8,14]"}}},
       {"constrained_block_fem", {6, {}}},
       {"constrained_block_pfem", {6, {}}},
+      {"constrained_block_pfem_3d", {6, {}}},
       {"cooks_membrane_3d", {3, {}}},
       {"cooks_membrane_es", {3, {}}},
       {"cooks_membrane_es_u", {3, {}}},

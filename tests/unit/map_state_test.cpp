@@ -217,7 +217,7 @@ TEST(RadiusRatio, IsOneHalfForAnEquilateralTriangleAndZeroForADegenerateOne) {
 TEST(MapState, RefusesToInterpolateFromNoPoints) {
   std::vector<Mat3> out;
   MapStats stats;
-  EXPECT_THROW(map_state({}, {}, {{0, 0}}, {kNoIndex}, MapSettings{}, out, stats), RunError);
+  EXPECT_THROW(map_state(std::vector<Vec2>{}, {}, {{0, 0}}, {kNoIndex}, MapSettings{}, out, stats), RunError);
 }
 
 }  // namespace

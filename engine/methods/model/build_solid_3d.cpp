@@ -34,7 +34,7 @@ TetMeshData read_tet_mesh(const MeshSpec& spec, Tet10MeshData& file_tet10) {
       b.origin = Vec3(spec.origin.x(), spec.origin.y(), spec.origin_z);
       b.size = Vec3(spec.size.x(), spec.size.y(), spec.size_z);
       b.nx = spec.nx, b.ny = spec.ny, b.nz = spec.nz;
-      mesh = generate_box(b);
+      mesh = spec.bcc ? generate_bcc_box(b) : generate_box(b);
       break;
     }
     case MeshGenerator::rectangle:
@@ -125,7 +125,8 @@ std::vector<Index> build_mesh_3d(const SceneSpec& scene, Nodes<3>& nodes, std::v
 }
 
 BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const Nodes<3>& nodes, const std::vector<Cells>& cells,
-                                                   const std::vector<Index>& node_body, const BodyRegions& regions, int dofs_per_node) {
+                                                   const std::vector<Index>& node_body, const BodyRegions& regions, int dofs_per_node,
+                                                   bool tie_mid_nodes, const std::vector<TractionFace>* frozen_tractions) {
   BoundaryConditions<3> bc;
   bc.per_node = dofs_per_node;
   std::vector<Vec3> lo(scene.bodies.size(), Vec3::Constant(1e300)), hi(scene.bodies.size(), Vec3::Constant(-1e300));
@@ -179,8 +180,22 @@ BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const
     }
   }
 
+  // [Schewe 2024] eq 24 in 3D: the mid-nodes of the edges of boundary faces that carry a condition follow their corners.
+  std::map<Index, std::array<Index, 2>> tied;  // mid-node -> corners
+  if (tie_mid_nodes)
+    for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
+      const BoundarySpec& spec = scene.boundaries[k];
+      if (!spec.has_traction && !spec.displacement.any()) continue;
+      for (const TractionFace& f : faces) {
+        if (f.nodes[3] == kNoIndex || !member[k][std::size_t(f.nodes[0])] || !member[k][std::size_t(f.nodes[1])] || !member[k][std::size_t(f.nodes[2])])
+          continue;
+        for (int s = 0; s < 3; ++s) tied[f.nodes[std::size_t(3 + s)]] = {f.nodes[std::size_t(s)], f.nodes[std::size_t((s + 1) % 3)]};
+      }
+    }
+  for (const auto& [mid, corner] : tied)
+    for (int d = 0; d < 3; ++d) bc.ties.push_back({mid * dofs_per_node + d, {corner[0] * dofs_per_node + d, corner[1] * dofs_per_node + d}});
+
   PrescribedDofs seen;
-  const std::map<Index, std::array<Index, 2>> no_ties;
   for (std::size_t k = 0; k < scene.boundaries.size(); ++k) {
     const BoundarySpec& spec = scene.boundaries[k];
     const auto body = std::size_t(spec.body);
@@ -196,11 +211,12 @@ BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const
     bc.boundary_names.push_back(spec.name);
     bc.boundary_nodes.push_back(selected);
     bc.boundary_prescribed.emplace_back();
-    prescribe_displacements(scene, k, selected, no_ties, nodes, seen, bc);
+    prescribe_displacements(scene, k, selected, tied, nodes, seen, bc);
     if (!spec.has_traction) continue;
     std::array<Index, 3> expr{kNoIndex, kNoIndex, kNoIndex};
     for (int d = 0; d < 3; ++d)
       if (spec.traction[d]) expr[std::size_t(d)] = add_expression(bc, *spec.traction[d]);
+    if (frozen_tractions) continue;  // compiled in every build, so that the frozen faces' expression indices hold
     // region.normal: the faces' corners run counter-clockwise seen from outside (boundary_faces of positively
     // oriented tetrahedra), so (x1 - x0) x (x2 - x0) is the outward normal, in the reference configuration.
     const std::optional<Vec3> direction = region_normal<3>(spec);
@@ -216,6 +232,12 @@ BoundaryConditions<3> build_boundary_conditions_3d(const SceneSpec& scene, const
     check_traction_support(scene, k, n_faces, n_in_region, "boundary faces with every corner in the region");
     for (Index e : expr)
       if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();
+  }
+  if (frozen_tractions) {
+    bc.traction_faces = *frozen_tractions;
+    for (const TractionFace& f : bc.traction_faces)
+      for (Index e : f.expression)
+        if (e != kNoIndex) bc.has_loads = true, bc.loads_depend_on_time |= bc.expressions[std::size_t(e)].depends_on_time();
   }
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     std::array<Index, 3> expr{kNoIndex, kNoIndex, kNoIndex};

@@ -90,7 +90,7 @@ FemModelT<D>::FemModelT(const SceneSpec& spec) : scene(spec) {
   if constexpr (D == 2)
     bc = build_boundary_conditions(scene, nodes, cells, node_body, regions, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
   else
-    bc = build_boundary_conditions_3d(scene, nodes, cells, node_body, regions, per_node);
+    bc = build_boundary_conditions_3d(scene, nodes, cells, node_body, regions, per_node, /*tie_mid_nodes=*/scene.scene.method == Method::pfem);
   system.dofs.build(per_node, dof_kinds(bc, cells, nodes.size(), per_node), bc.ties);
   std::vector<const Cells*> blocks;
   for (const auto& c : cells) blocks.push_back(&c);

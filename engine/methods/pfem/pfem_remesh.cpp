@@ -99,6 +99,23 @@ bool change_particles(const PfemSettings& settings, double t_n, PfemTopology& to
 
 }  // namespace
 
+PfemSettings pfem_settings_of(const SceneSpec& scene) {
+  PfemSettings s;
+  const PfemSpec& p = scene.pfem;
+  s.remesh.alpha = p.alpha, s.remesh.l_char = p.lchar, s.remesh.local = p.local;
+  s.remesh_3d.alpha = p.alpha, s.remesh_3d.l_char = p.lchar, s.remesh_3d.local = p.local;
+  s.remesh_3d.keep_delaunay = p.keep_delaunay, s.remesh_3d.flip_quality = p.flip_quality;
+  s.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
+  s.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
+  s.every = p.every;
+  s.remesh.surface = p.constrained_surface ? SurfaceMode::constrained : SurfaceMode::alpha;
+  s.edits = {p.insert_above, p.remove_below, {}};
+  for (const WallSpec& w : scene.walls)
+    if (w.spacing > 0.0)
+      for (const auto& [point, normal] : w.planes) s.edits.graded.push_back({point, normal, w.spacing, w.body, w.spacing_ramp});
+  return s;
+}
+
 PfemTopology initial_topology(const FemModel& m) {
   PfemTopology topo;
   const std::size_t n_bodies = m.scene.bodies.size();

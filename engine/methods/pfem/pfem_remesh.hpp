@@ -16,35 +16,48 @@
 #include "engine/timing/timers.hpp"
 #include "systems/map/map_state.hpp"
 #include "systems/remesh/remesh.hpp"
+#include "systems/remesh/remesh_3d.hpp"
 
 namespace loom {
 
 struct PfemSettings {
   RemeshSettings remesh;
+  Remesh3dSettings remesh_3d;  // scene.dimension = 3 (systems/remesh/remesh_3d.hpp)
   MapSettings map;
   int every = 1;  // remesh every this many steps
   ParticleEditSettings edits;
 };
 
+// The settings of the scene's [remesh] and [map] (and its graded walls' spacing).
+PfemSettings pfem_settings_of(const SceneSpec& scene);
+
 struct RemeshReport {
   bool changed = false;       // the connectivity changed: sparsity, colouring and dofs were rebuilt
-  Index triangles = 0, rejected = 0, isolated = 0, merged = 0, crossings = 0;
+  Index triangles = 0, rejected = 0, isolated = 0, merged = 0, crossings = 0;  // triangles: the cells (3D: tetrahedra)
   Index inserted = 0, removed = 0;             // particles
-  double area_before = 0.0, area_after = 0.0;  // of the corner triangles in X_n (before: of the mesh before any change)
+  Index flipped = 0, slivers = 0, capped = 0;  // 3D (Remesh3dResult)
+  double area_before = 0.0, area_after = 0.0;  // of the corner cells in X_n (before: of the mesh before any change; 3D: volumes)
   MapStats map;
-  RemeshStats stats() const { return {changed, rejected, isolated, merged, crossings, inserted, removed, area_after - area_before}; }
+  RemeshStats stats() const {
+    return {changed, rejected, isolated, merged, crossings, inserted, removed, area_after - area_before, flipped, slivers, capped};
+  }
 };
 
 // The topology of the mesh the model was built with (the generated mesh).
 PfemTopology initial_topology(const FemModel& model);
+PfemTopology3d initial_topology(const FemModelT<3>& model);
 
 // Remeshes the model's bodies at X = X_ref + u_n and transfers the state; see the header comment. t_n: the time at
 // the start of the step (inlets start and end by it).
 RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology& topology, FemModel& model, Timers& timers);
+// On tetrahedra (pfem_remesh_3d.cpp): the 3D remesh of every body, tet10 mid-nodes dropped and re-created, the history
+// carried by the 3D map_state; no particle edits or inflow.
+RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology3d& topology, FemModelT<3>& model, Timers& timers);
 
 // Boundary conditions (eq-24 ties, frozen tractions of `topology`), dofs, sparsity and scatters of the
 // model's current cells; the dof numbering and pattern are rebuilt if the connectivity changed or the dof
 // kinds differ (a restart from a checkpoint passes true).
 void rebuild_system(FemModel& model, const PfemTopology& topology, bool connectivity_changed);
+void rebuild_system(FemModelT<3>& model, const PfemTopology3d& topology, bool connectivity_changed);
 
 }  // namespace loom

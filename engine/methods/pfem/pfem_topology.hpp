@@ -10,6 +10,8 @@
 // particles renumbers them (engine/methods/pfem/particle_set.hpp).
 #pragma once
 
+#include <array>
+#include <type_traits>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -34,5 +36,20 @@ struct PfemTopology {
   std::vector<TractionEdge<2>> tractions;          // loaded edges of the initial mesh, on corners (dead loads)
   std::vector<InletState> inlets;                  // per [[inlet]]
 };
+
+// The same on tetrahedra (method pfem with scene.dimension = 3): per body the particles, the corner tetrahedra and the
+// outward surface faces of the current mesh (the next remesh's "old mesh", spec 3d-free-surface §3), and the
+// dead-load traction faces of the initial mesh on corners. No inlets, walls or particle edits in 3D yet.
+struct PfemTopology3d {
+  Index n_points = 0;
+  std::vector<std::vector<Index>> points_of_body;
+  std::vector<std::vector<Index>> tets;                      // per body: corner connectivity (global indices), 4 per cell
+  std::vector<std::vector<std::array<Index, 3>>> surface;    // per body: faces used by one tetrahedron, outward
+  std::vector<TractionFace> tractions;                       // loaded faces of the initial mesh, on corners (dead loads)
+};
+
+// The topology a D-dimensional pfem run keeps.
+template <int D>
+using PfemTopologyOf = std::conditional_t<D == 2, PfemTopology, PfemTopology3d>;
 
 }  // namespace loom

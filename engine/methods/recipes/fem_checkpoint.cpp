@@ -9,6 +9,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/io/run_files.hpp"
 #include "engine/mesh/colouring.hpp"
+#include "engine/methods/pfem/pfem_checkpoint.hpp"
 #include "engine/methods/recipes/fem_method.hpp"
 #include "engine/methods/recipes/run_output.hpp"
 
@@ -36,29 +37,7 @@ void FemRunT<D>::write_checkpoint(int step) {
   // The integration domains of seed 001's elements: their history b^e_n and geometry in B_n.
   w.value("domain_blocks", Index(m_.edges.size()));
   for (std::size_t k = 0; k < m_.edges.size(); ++k) w.store("domains/" + std::to_string(k), m_.edges[k]);
-  if constexpr (D == 2)
-  if (pfem_) {
-    for (std::size_t b = 0; b < topology_.triangles.size(); ++b) w.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
-    // A particle set that changes (insertion, removal, inflow): its size, the inlets' rows and what renumbering
-    // touched (dead-load edges, mesh-file regions).
-    w.value("topology/n_points", topology_.n_points);
-    for (std::size_t k = 0; k < topology_.inlets.size(); ++k) {
-      const std::string key = "topology/inlet/" + std::to_string(k);
-      w.vector(key + "/row", topology_.inlets[k].row);
-      w.value(key + "/state", char(int(topology_.inlets[k].started) + 2 * int(topology_.inlets[k].closed)));
-    }
-    std::vector<Index> traction_ends;
-    for (const auto& e : topology_.tractions) traction_ends.insert(traction_ends.end(), {e.a, e.b});
-    w.vector("topology/traction_ends", traction_ends);
-    for (std::size_t b = 0; b < m_.regions.size(); ++b)
-      for (std::size_t r = 0; r < m_.regions[b].size(); ++r) {
-        const std::string key = "regions/" + std::to_string(b) + "/" + std::to_string(r);
-        w.vector(key + "/corners", m_.regions[b][r].corners);
-        std::vector<Index> ends;
-        for (const auto& e : m_.regions[b][r].edges) ends.insert(ends.end(), {e[0], e[1]});
-        w.vector(key + "/edges", ends);
-      }
-  }
+  if (pfem_) write_topology(w, topology_, m_);
   store_checkpoint(w, options_, step);
 }
 
@@ -106,46 +85,8 @@ CheckpointHeader FemRunT<D>::restore_checkpoint(const CheckpointReader& r) {
     for (Index v : m_.edges[k].stencil.nodes) r.expect(v >= 0 && v < m_.nodes.size(), "has integration domains on nodes it does not hold");
     colour_cells(m_.edges[k].stencil, m_.nodes.size());  // the colour groups are not columns: rebuilt as the builder did
   }
-  if constexpr (D == 2)
   if (pfem_) {
-    const Index n_points = r.value<Index>("topology/n_points");
-    if (!particles_change()) r.expect_size("particles", std::size_t(n_points), std::size_t(topology_.n_points));
-    topology_.n_points = n_points;
-    r.expect(topology_.n_points <= m_.nodes.size(), "has more particles than nodes");
-    topology_.points_of_body.assign(topology_.points_of_body.size(), {});
-    for (Index i = 0; i < topology_.n_points; ++i) {
-      const Index b = m_.node_body[std::size_t(i)];
-      r.expect(b >= 0 && b < Index(topology_.points_of_body.size()), "has particles of bodies the scene does not have");
-      topology_.points_of_body[std::size_t(b)].push_back(i);
-    }
-    for (std::size_t k = 0; k < topology_.inlets.size(); ++k) {
-      const std::string key = "topology/inlet/" + std::to_string(k);
-      r.vector(key + "/row", topology_.inlets[k].row);
-      const char state = r.value<char>(key + "/state");
-      topology_.inlets[k].started = state & 1, topology_.inlets[k].closed = (state & 2) != 0;
-      for (Index v : topology_.inlets[k].row) r.expect(v >= 0 && v < topology_.n_points, "has inlet rows on nodes that are not particles");
-    }
-    std::vector<Index> traction_ends;
-    r.vector("topology/traction_ends", traction_ends);
-    r.expect_size("dead-load edge ends", traction_ends.size(), 2 * topology_.tractions.size());
-    for (std::size_t e = 0; e < topology_.tractions.size(); ++e) {
-      topology_.tractions[e].a = traction_ends[2 * e], topology_.tractions[e].b = traction_ends[2 * e + 1];
-      r.expect(traction_ends[2 * e] < topology_.n_points && traction_ends[2 * e + 1] < topology_.n_points, "has loads on nodes that are not particles");
-    }
-    for (std::size_t b = 0; b < m_.regions.size(); ++b)
-      for (std::size_t g = 0; g < m_.regions[b].size(); ++g) {
-        const std::string key = "regions/" + std::to_string(b) + "/" + std::to_string(g);
-        r.vector(key + "/corners", m_.regions[b][g].corners);
-        std::vector<Index> ends;
-        r.vector(key + "/edges", ends);
-        m_.regions[b][g].edges.clear();
-        for (std::size_t e = 0; e + 1 < ends.size(); e += 2) m_.regions[b][g].edges.push_back({ends[e], ends[e + 1]});
-      }
-    for (std::size_t b = 0; b < topology_.triangles.size(); ++b) {
-      r.vector("topology/triangles/" + std::to_string(b), topology_.triangles[b]);
-      for (Index v : topology_.triangles[b]) r.expect(v >= 0 && v < topology_.n_points, "has triangles on nodes that are not particles");
-      topology_.boundary[b] = boundary_of(topology_.triangles[b]);
-    }
+    restore_topology(r, topology_, m_, particles_change());
     rebuild_system(m_, topology_, /*connectivity_changed=*/true);
     probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   }

@@ -34,19 +34,8 @@ FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
   check_model();
   if (options_.profile) timers_.enable_profile();
   pfem_ = scene_.scene.method == Method::pfem || scene_.scene.method == Method::es_pfem;
-  if constexpr (D == 2)
-    if (pfem_) {
-    const PfemSpec& p = scene_.pfem;
-    pfem_settings_.remesh.alpha = p.alpha, pfem_settings_.remesh.l_char = p.lchar, pfem_settings_.remesh.local = p.local;
-    pfem_settings_.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
-    pfem_settings_.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
-    pfem_settings_.every = p.every;
-    pfem_settings_.remesh.surface = p.constrained_surface ? SurfaceMode::constrained : SurfaceMode::alpha;
-    pfem_settings_.edits = {p.insert_above, p.remove_below, {}};
-    for (const WallSpec& w : scene_.walls)
-      if (w.spacing > 0.0)
-        for (const auto& [point, normal] : w.planes)
-          pfem_settings_.edits.graded.push_back({point, normal, w.spacing, w.body, w.spacing_ramp});
+  if (pfem_) {
+    pfem_settings_ = pfem_settings_of(scene_);
     topology_ = initial_topology(m_);
     check_inlets();
   }
@@ -149,7 +138,6 @@ void FemRunT<D>::build_graph() {
   g.name_store(&probe_writer_, "probes.csv");
   g.name_store(&writer_, "vtk_writer");
 
-  if constexpr (D == 2)
   if (pfem_) {
     g.name_store(&topology_, "pfem_topology");
     const auto remesh = g.add_node("remesh", {{&m_.materials}, {&topology_, &m_.nodes, &m_.cells, &m_.quad, &m_.edges, &m_.bc, &m_.system}},
@@ -194,12 +182,10 @@ void FemRunT<D>::build_graph() {
 
 template <int D>
 void FemRunT<D>::remesh_node() {
-  if constexpr (D == 2) {
-    last_remesh_ = remesh_model(pfem_settings_, ctx_.t - ctx_.dt, topology_, m_, timers_);
-    if (last_remesh_.changed) {
-      probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
-      last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
-    }
+  last_remesh_ = remesh_model(pfem_settings_, ctx_.t - ctx_.dt, topology_, m_, timers_);
+  if (last_remesh_.changed) {
+    probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
+    last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
   }
 }
 
@@ -311,13 +297,6 @@ void FemRunT<D>::describe(std::ostream& os) const {
      << linear_solver_name(m_.linear_solver)
      << "\n";
   os << "  boundary_conditions: " << m_.bc.prescribed.size() << " prescribed dofs, "
-  // The residual of a tied mid-node (PFEM TRI6, TET10) went to its masters (T^T r), so its mass goes with it: each
-  // master's mass is the row sum of T^T M T, m_a + sum over its ties of m_mid / 2 (a uniform g then gives a_0 = g).
-  std::vector<double> mass(std::size_t(dofs.n_dofs()), 0.0);
-  for (Index i = 0; i < m_.nodes.size(); ++i)
-    for (int d = 0; d < D; ++d) mass[std::size_t(dofs.dof(i, d))] = m_.nodes.lumped_mass[i];
-  for (const Tie& tie : dofs.ties)
-    for (Index master : tie.master) mass[std::size_t(master)] += 0.5 * m_.nodes.lumped_mass[tie.dof / dofs.per_node];
      << (D == 3 ? m_.bc.traction_faces.size() : m_.bc.traction_edges.size()) << (D == 3 ? " traction faces" : " traction edges") << ", loads " << (m_.bc.has_loads ? (m_.bc.loads_depend_on_time ? "time-dependent" : "constant") : "none") << "\n";
   graph_->print(os);
 }
@@ -332,6 +311,13 @@ void FemRunT<D>::set_equilibrium_acceleration() {
   if constexpr (D == 2)
     if (!m_.walls.empty()) add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
   const DofMap& dofs = m_.system.dofs;
+  // The residual of a tied mid-node (PFEM TRI6, TET10) went to its masters (T^T r), so its mass goes with it: each
+  // master's mass is the row sum of T^T M T, m_a + sum over its ties of m_mid / 2 (a uniform g then gives a_0 = g).
+  std::vector<double> mass(std::size_t(dofs.n_dofs()), 0.0);
+  for (Index i = 0; i < m_.nodes.size(); ++i)
+    for (int d = 0; d < D; ++d) mass[std::size_t(dofs.dof(i, d))] = m_.nodes.lumped_mass[i];
+  for (const Tie& tie : dofs.ties)
+    for (Index master : tie.master) mass[std::size_t(master)] += 0.5 * m_.nodes.lumped_mass[tie.dof / dofs.per_node];
   for (Index i = 0; i < m_.nodes.size(); ++i)
     for (int d = 0; d < D; ++d) {
       const Index dof = dofs.dof(i, d);

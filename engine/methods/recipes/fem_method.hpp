@@ -84,7 +84,7 @@ class FemRunT final : public MethodRun {
   // PFEM (method = pfem): settings, the topology the next remesh starts from, the last remesh
   bool pfem_ = false;
   PfemSettings pfem_settings_;
-  PfemTopology topology_;
+  PfemTopologyOf<D> topology_;
   RemeshReport last_remesh_;
   RemeshReport last_change_;   // the last remesh that changed the connectivity, at step last_change_step_
   int last_change_step_ = -1;

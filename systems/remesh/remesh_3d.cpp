@@ -1,0 +1,318 @@
+#include "systems/remesh/remesh_3d.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/tet_mesh.hpp"
+#include "systems/remesh/delaunay_check.hpp"
+#include "systems/remesh/point_in_tets.hpp"
+#include "systems/remesh/surface_graph.hpp"
+#include "systems/remesh/tet_flips.hpp"
+
+namespace loom {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<Index, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CGAL::Delaunay_triangulation_cell_base_3<Kernel>, CGAL::Sequential_tag>;
+using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
+using Quad = std::array<Index, 4>;
+using Triple = std::array<Index, 3>;
+
+double volume_of(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).cross(c - a).dot(d - a) / 6.0; }
+
+Triple sorted_face(Index a, Index b, Index c) {
+  Triple t{a, b, c};
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+Quad sorted_quad(const Index* v) {
+  Quad q{v[0], v[1], v[2], v[3]};
+  std::sort(q.begin(), q.end());
+  return q;
+}
+
+// The distance from p to the triangle (a, b, c) (Ericson, Real-Time Collision Detection §5.1.5).
+double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+// What R3.2 reads of the previous mesh.
+struct Previous {
+  std::vector<Quad> cells;            // sorted quadruples, sorted
+  std::vector<Triple> surface_faces;  // sorted triples, sorted
+  std::vector<std::vector<Index>> surface_at;  // per point: the previous surface faces (indices into `faces`) around it
+  std::vector<Triple> faces;          // outward
+  std::vector<char> on_surface;
+};
+
+Previous read_previous(Index n, const std::vector<Index>& tets) {
+  Previous p;
+  for (std::size_t t = 0; t + 3 < tets.size(); t += 4) p.cells.push_back(sorted_quad(&tets[t]));
+  std::sort(p.cells.begin(), p.cells.end());
+  p.faces = surface_of(tets);
+  p.on_surface.assign(std::size_t(n), 0);
+  p.surface_at.assign(std::size_t(n), {});
+  for (std::size_t f = 0; f < p.faces.size(); ++f) {
+    p.surface_faces.push_back(sorted_face(p.faces[f][0], p.faces[f][1], p.faces[f][2]));
+    for (Index v : p.faces[f]) p.on_surface[std::size_t(v)] = 1, p.surface_at[std::size_t(v)].push_back(Index(f));
+  }
+  std::sort(p.surface_faces.begin(), p.surface_faces.end());
+  return p;
+}
+
+double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const double det = u.dot(v.cross(w));
+  if (det == 0.0) return std::numeric_limits<double>::infinity();
+  return ((u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / (2.0 * det)).norm();
+}
+
+// The outcome of R3.2 for one cell.
+enum class Verdict { keep, merge, tear, cap, drop };
+
+struct Classifier {
+  const std::vector<Vec3>& x;
+  const Remesh3dSettings& settings;
+  const std::vector<double>& average_distance;
+  const Previous* previous = nullptr;
+  const PointInTets* in_previous = nullptr;
+  const SurfaceGraph* surface = nullptr;
+
+  double l_char(const Index* v) const {
+    if (!settings.local) return settings.l_char;
+    return (average_distance[std::size_t(v[0])] + average_distance[std::size_t(v[1])] + average_distance[std::size_t(v[2])] +
+            average_distance[std::size_t(v[3])]) / 4.0;
+  }
+
+  // Round-off flat: a cell of four (nearly) coplanar points, which CGAL's exact predicates make a cell of.
+  bool flat(const Index* v) const {
+    const Vec3 &a = x[std::size_t(v[0])], &b = x[std::size_t(v[1])], &c = x[std::size_t(v[2])], &d = x[std::size_t(v[3])];
+    double longest = 0.0, largest_face = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (x[std::size_t(v[i])] - x[std::size_t(v[j])]).norm());
+    for (const auto& f : kTetFaces) {
+      const Vec3 &p = x[std::size_t(v[f[0]])], &q = x[std::size_t(v[f[1]])], &r = x[std::size_t(v[f[2]])];
+      largest_face = std::max(largest_face, 0.5 * (q - p).cross(r - p).norm());
+    }
+    return 3.0 * std::abs(volume_of(a, b, c, d)) <= 1e-9 * longest * largest_face;
+  }
+
+  // Deep enough below the previous surface to be material: a tenth of the cell's smallest altitude. A flat cell
+  // is material when its centroid lies off the planes of its corners' surface faces (it joins two quadrilaterals cut
+  // the other way inside the body, and the flips remove it); in one of those planes it is a cap of a face whose
+  // points round-off has made slightly concave (it may span the face, far from its corners' faces).
+  bool below_surface(const Index* v, const Vec3& centroid, double volume, bool is_flat) const {
+    double depth = std::numeric_limits<double>::infinity(), plane_depth = depth, largest_face = 0.0, longest = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      for (Index f : previous->surface_at[std::size_t(v[k])]) {
+        const Triple& s = previous->faces[std::size_t(f)];
+        const Vec3 &p = x[std::size_t(s[0])], &q = x[std::size_t(s[1])], &r = x[std::size_t(s[2])];
+        depth = std::min(depth, distance_to_triangle(centroid, p, q, r));
+        plane_depth = std::min(plane_depth, std::abs((q - p).cross(r - p).normalized().dot(centroid - p)));
+      }
+      const Vec3 &a = x[std::size_t(v[kTetFaces[k][0]])], &b = x[std::size_t(v[kTetFaces[k][1]])], &c = x[std::size_t(v[kTetFaces[k][2]])];
+      largest_face = std::max(largest_face, 0.5 * (b - a).cross(c - a).norm());
+      for (int j = k + 1; j < 4; ++j) longest = std::max(longest, (x[std::size_t(v[k])] - x[std::size_t(v[j])]).norm());
+    }
+    if (is_flat) return plane_depth > 1e-9 * longest;
+    return depth >= 0.1 * (3.0 * volume / largest_face);
+  }
+
+  Verdict operator()(const Index* v) const {
+    const Vec3 &a = x[std::size_t(v[0])], &b = x[std::size_t(v[1])], &c = x[std::size_t(v[2])], &d = x[std::size_t(v[3])];
+    const double alpha_l = settings.alpha * l_char(v);
+    const bool passes = !(alpha_l < circumradius(a, b, c, d));  // eq 16
+    if (!previous) return passes ? Verdict::keep : Verdict::drop;
+    const Quad key = sorted_quad(v);
+    bool inside = std::binary_search(previous->cells.begin(), previous->cells.end(), key);
+    const bool is_flat = flat(v);
+    bool capped = false;
+    if (!inside) {
+      const Vec3 centroid = (a + b + c + d) / 4.0;
+      inside = in_previous->contains(centroid);
+      const bool all_on_surface = previous->on_surface[std::size_t(v[0])] && previous->on_surface[std::size_t(v[1])] &&
+                                  previous->on_surface[std::size_t(v[2])] && previous->on_surface[std::size_t(v[3])];
+      if (inside && all_on_surface && !below_surface(v, centroid, std::abs(volume_of(a, b, c, d)), is_flat)) inside = false, capped = true;
+    }
+    if (inside && is_flat) return Verdict::keep;  // its circumsphere means nothing; the flips remove it
+    double longest = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (x[std::size_t(v[i])] - x[std::size_t(v[j])]).norm());
+    if (inside) {
+      if (passes) return Verdict::keep;
+      // A cell on the surface may fail eq 16 by being flat (a large circumsphere over short edges): it stays unless
+      // an edge is longer than alpha l_char too, as across an opening (the spec keeps every surface cell, so a
+      // body pulled apart would stay joined by its skin).
+      if (longest <= alpha_l)
+        for (const auto& f : kTetFaces)
+          if (std::binary_search(previous->surface_faces.begin(), previous->surface_faces.end(), sorted_face(v[f[0]], v[f[1]], v[f[2]])))
+            return Verdict::keep;
+      return Verdict::tear;
+    }
+    // Outside: two surfaces closer than the mesh join, a void of the body the size of a cell fills.
+    // Short edges or a small circumsphere: a cell that reaches into a previous cell's corner region across a narrow
+    // gap may have a face diagonal of the lattice as an edge (longer than alpha l_char) and still a small sphere.
+    if (passes || longest <= alpha_l) {
+      const Index corners[4] = {v[0], v[1], v[2], v[3]};
+      bool in_void = true;
+      for (Index k : corners) in_void = in_void && surface->on_surface(k) && surface->inner(surface->component(k));
+      if (in_void || joins_two_surfaces(*surface, x, corners)) return Verdict::merge;
+    }
+    return capped ? Verdict::cap : Verdict::drop;
+  }
+};
+
+void finish(const std::vector<Vec3>& x, Remesh3dResult& out) {
+  out.surface = surface_of(out.tets);
+  std::vector<char> used(x.size(), 0);
+  out.volume = 0.0, out.slivers = 0;
+  for (std::size_t t = 0; t + 3 < out.tets.size(); t += 4) {
+    const Vec3 &a = x[std::size_t(out.tets[t])], &b = x[std::size_t(out.tets[t + 1])], &c = x[std::size_t(out.tets[t + 2])],
+               &d = x[std::size_t(out.tets[t + 3])];
+    out.volume += volume_of(a, b, c, d);
+    out.slivers += tet_quality(a, b, c, d) < 0.1;
+    for (std::size_t k = 0; k < 4; ++k) used[std::size_t(out.tets[t + k])] = 1;
+  }
+  out.isolated = Index(std::count(used.begin(), used.end(), 0));
+}
+
+}  // namespace
+
+std::array<Index, 4> canonical_tet(const std::array<Index, 4>& v) {
+  // Even permutations bringing corner k first: identity, (1 0 3 2), (2 3 0 1), (3 2 1 0).
+  static constexpr int kFirst[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};
+  const int m = int(std::min_element(v.begin(), v.end()) - v.begin());
+  const Index a = v[std::size_t(kFirst[m][0])];
+  Index rest[3] = {v[std::size_t(kFirst[m][1])], v[std::size_t(kFirst[m][2])], v[std::size_t(kFirst[m][3])]};
+  const int r = int(std::min_element(rest, rest + 3) - rest);  // a 3-cycle of the other three is even too
+  return {a, rest[r], rest[(r + 1) % 3], rest[(r + 2) % 3]};
+}
+
+std::vector<std::array<Index, 3>> surface_of(const std::vector<Index>& tets) {
+  std::vector<std::array<Index, 3>> out;
+  for (const BoundaryFace& f : boundary_faces(tets)) out.push_back(f.nodes);
+  return out;
+}
+
+void average_neighbour_distance_3d(const std::vector<Vec3>& positions, const std::vector<Index>& tets, std::vector<double>& average_distance) {
+  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  std::vector<std::pair<Index, Index>> edges;
+  for (std::size_t t = 0; t + 3 < tets.size(); t += 4)
+    for (const auto& e : kEdges) {
+      const Index a = tets[t + std::size_t(e[0])], b = tets[t + std::size_t(e[1])];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> sum(positions.size(), 0.0);
+  std::vector<int> count(positions.size(), 0);
+  for (const auto& [a, b] : edges) {
+    const double l = (positions[std::size_t(a)] - positions[std::size_t(b)]).norm();
+    sum[std::size_t(a)] += l, sum[std::size_t(b)] += l, ++count[std::size_t(a)], ++count[std::size_t(b)];
+  }
+  average_distance.assign(positions.size(), 0.0);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (count[i] > 0) average_distance[i] = sum[i] / count[i];
+}
+
+void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Index>& previous_tets, const Remesh3dSettings& settings,
+                      const std::vector<double>& average_distance, Remesh3dResult& out) {
+  out = Remesh3dResult{};
+  const Index n = Index(positions.size());
+  // R3.7: a previous mesh that is still Delaunay, tears nowhere and cannot merge is the answer.
+  if (settings.keep_delaunay && !previous_tets.empty() &&
+      still_delaunay(positions, previous_tets, settings.alpha, settings.local ? average_distance : std::vector<double>{}, settings.l_char)) {
+    out.tets = previous_tets;
+    out.merged_cell.assign(previous_tets.size() / 4, 0);
+    out.kept_previous = true;
+    finish(positions, out);
+    return;
+  }
+  // R3.1
+  std::vector<std::pair<Kernel::Point_3, Index>> points;
+  points.reserve(positions.size());
+  for (Index i = 0; i < n; ++i) points.emplace_back(Kernel::Point_3(positions[std::size_t(i)].x(), positions[std::size_t(i)].y(), positions[std::size_t(i)].z()), i);
+  const Delaunay dt(points.begin(), points.end());
+  LOOM_CHECK(Index(dt.number_of_vertices()) == n, RunError,
+             "remesh: " << n - Index(dt.number_of_vertices()) << " points coincide with others (the body has collapsed)");
+
+  // R3.2
+  std::optional<Previous> previous;
+  std::optional<PointInTets> in_previous;
+  std::optional<SurfaceGraph> surface;
+  if (!previous_tets.empty()) {
+    previous = read_previous(n, previous_tets);
+    in_previous.emplace(positions, previous_tets);
+    surface.emplace(n, previous->faces, positions);
+  }
+  const Classifier classify{positions, settings, average_distance, previous ? &*previous : nullptr, in_previous ? &*in_previous : nullptr,
+                            surface ? &*surface : nullptr};
+  std::vector<Index> kept;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    Index v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+    if (volume_of(positions[std::size_t(v[0])], positions[std::size_t(v[1])], positions[std::size_t(v[2])], positions[std::size_t(v[3])]) < 0.0)
+      std::swap(v[2], v[3]);
+    switch (classify(v)) {
+      case Verdict::keep: kept.insert(kept.end(), v, v + 4); break;
+      case Verdict::merge: kept.insert(kept.end(), v, v + 4), ++out.merged; break;
+      case Verdict::tear: ++out.rejected; break;
+      case Verdict::cap: ++out.capped; break;
+      case Verdict::drop: if (!previous) ++out.rejected; break;
+    }
+  }
+  // R3.4
+  if (settings.flip_quality > 0.0) {
+    FlipSettings flips;
+    flips.threshold = settings.flip_quality;
+    const FlipStats s = improve_by_flips(positions, kept, flips);
+    out.flipped = s.flips23 + s.flips32 + s.edge_removals;
+  }
+  // R3.5: canonical corners, sorted cells.
+  const std::size_t n_cells = kept.size() / 4;
+  std::vector<Quad> cells(n_cells);
+  for (std::size_t t = 0; t < n_cells; ++t) cells[t] = canonical_tet({kept[4 * t], kept[4 * t + 1], kept[4 * t + 2], kept[4 * t + 3]});
+  std::sort(cells.begin(), cells.end(), [](const Quad& a, const Quad& b) {
+    Quad sa = a, sb = b;
+    std::sort(sa.begin(), sa.end()), std::sort(sb.begin(), sb.end());
+    return sa < sb;
+  });
+  out.tets.clear();
+  out.merged_cell.clear();
+  for (const Quad& q : cells) {
+    out.tets.insert(out.tets.end(), q.begin(), q.end());
+    // A cell outside the previous mesh held no material (after the flips: by its centroid).
+    bool outside = false;
+    if (previous && !std::binary_search(previous->cells.begin(), previous->cells.end(), sorted_quad(q.data())))
+      outside = !in_previous->contains((positions[std::size_t(q[0])] + positions[std::size_t(q[1])] + positions[std::size_t(q[2])] +
+                                        positions[std::size_t(q[3])]) / 4.0);
+    out.merged_cell.push_back(outside ? 1 : 0);
+  }
+  finish(positions, out);  // R3.6
+}
+
+}  // namespace loom

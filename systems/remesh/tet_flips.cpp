@@ -1,0 +1,389 @@
+// Flips on loom's own arrays (not CGAL's Triangulation_3::flip, which would break its Delaunay object; spec
+// §3 R3.4). The mesh is held as tets + face neighbours; a flip replaces a cavity (2 tets, or the n tets around
+// an edge) by new tets with the same outer faces, so the neighbours outside it are relinked face by face.
+#include "systems/remesh/tet_flips.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include <Eigen/Geometry>  // cross
+
+#include "engine/core/errors.hpp"
+#include "engine/mesh/tet_mesh.hpp"  // kTetFaces
+
+namespace loom {
+namespace {
+
+using Tet = std::array<Index, 4>;
+using Face = std::array<Index, 3>;
+
+constexpr int kMaxRing = 7;  // Shewchuk: larger rings rarely help and the DP grows as n^3
+// A new tet must have 6V > kMinVolume l_max^3 (regular: 0.71), far above the round-off of 6V (~1e-16 l_max^3 times
+// |x| / l_max): it is then positive in exact arithmetic, and positive new tets with the cavity's outer faces tile
+// the cavity exactly. A bound on q would not do: a needle of width w has q ~ w / l but 6V ~ w^2 l.
+constexpr double kMinVolume = 1e-12;
+// "Strictly better" beyond the round-off of q, so that no flip and its reverse can both be accepted.
+constexpr double kMargin = 1e-12;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Sorts v ascending; returns true when the permutation was odd.
+template <std::size_t N>
+bool sort_odd(std::array<Index, N>& v) {
+  bool odd = false;
+  for (std::size_t i = 1; i < N; ++i)
+    for (std::size_t j = i; j > 0 && v[j - 1] > v[j]; --j) std::swap(v[j - 1], v[j]), odd = !odd;
+  return odd;
+}
+
+Face sorted_face(Index a, Index b, Index c) {
+  Face f{a, b, c};
+  sort_odd(f);
+  return f;
+}
+
+// A transformation found around one bad tet: the tets it removes and those it creates.
+struct Candidate {
+  int kind = 0;               // 0 none, 1 flip 2-3, 2 edge removal
+  std::array<Index, 3> key{};  // sorted face (2-3) or edge (a, b, -1): tie-break independent of storage order
+  double old_min = kInf, new_min = -kInf;
+  std::vector<Index> old_tets;
+  std::vector<Tet> new_tets;
+  bool better_than(const Candidate& o) const {
+    if (o.kind == 0) return true;
+    if (new_min != o.new_min) return new_min > o.new_min;
+    return std::tie(kind, key) < std::tie(o.kind, o.key);
+  }
+};
+
+// The closed ring of tets around edge (a, b), a < b: ring points p ordered so that every (a, b, p_i, p_i+1) is
+// positive, starting at the smallest point index.
+struct Ring {
+  Index a = kNoIndex, b = kNoIndex;
+  std::vector<Index> p, tets;
+};
+
+class FlipMesh {
+ public:
+  FlipMesh(const std::vector<Vec3>& x, const std::vector<Index>& flat) : x_(x) {
+    const std::size_t n = flat.size() / 4;
+    tets_.resize(n);
+    for (std::size_t t = 0; t < n; ++t) tets_[t] = {flat[4 * t], flat[4 * t + 1], flat[4 * t + 2], flat[4 * t + 3]};
+    q_.resize(n);
+    for (std::size_t t = 0; t < n; ++t) q_[t] = quality(tets_[t]);
+    alive_.assign(n, 1);
+    link_faces();
+  }
+
+  // q computed on the sorted corners (sign fixed by the parity), so that it depends on the tet alone.
+  double quality(Tet t) const {
+    const bool odd = sort_odd(t);
+    const double q = tet_quality(x_[t[0]], x_[t[1]], x_[t[2]], x_[t[3]]);
+    return odd ? -q : q;
+  }
+
+  std::vector<Index> bad_tets(double threshold) const {
+    struct Bad {
+      double q;
+      Tet sorted;
+      Index tet;
+    };
+    std::vector<Bad> bad;
+    for (Index t = 0; t < Index(tets_.size()); ++t)
+      if (alive_[t] && q_[t] < threshold) bad.push_back({q_[t], tets_[t], t}), sort_odd(bad.back().sorted);
+    std::sort(bad.begin(), bad.end(),
+              [](const Bad& r, const Bad& s) { return std::tie(r.q, r.sorted) < std::tie(s.q, s.sorted); });
+    std::vector<Index> order(bad.size());
+    for (std::size_t i = 0; i < bad.size(); ++i) order[i] = bad[i].tet;
+    return order;
+  }
+
+  // q of a tet a flip would create, or -inf when it is not safely positive (kMinVolume).
+  double new_quality(Tet t) const {
+    const double q = quality(t);
+    const bool odd = sort_odd(t);
+    const Vec3 &a = x_[t[0]], &b = x_[t[1]], &c = x_[t[2]], &d = x_[t[3]];
+    const double det = (odd ? -1.0 : 1.0) * (b - a).dot((c - a).cross(d - a));
+    const double l2 = std::max({(b - a).squaredNorm(), (c - a).squaredNorm(), (d - a).squaredNorm(),
+                                (c - b).squaredNorm(), (d - b).squaredNorm(), (d - c).squaredNorm()});
+    return det > kMinVolume * l2 * std::sqrt(l2) ? q : -kInf;
+  }
+
+  bool alive(Index t) const { return alive_[t] != 0; }
+
+  // The best improving transformation involving tet t (kind 0 when none improves its cavity).
+  Candidate best_around(Index t) const {
+    Candidate best;
+    // Candidates come back only when they improve their cavity.
+    for (int f = 0; f < 4; ++f) {
+      Candidate c = flip23(t, f);
+      if (c.kind && c.better_than(best)) best = std::move(c);
+    }
+    static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    for (const auto& e : kEdges) {
+      Candidate c = edge_removal(t, e[0], e[1]);
+      if (c.kind && c.better_than(best)) best = std::move(c);
+    }
+    return best;
+  }
+
+  void apply(const Candidate& c);
+
+  void write(std::vector<Index>& flat) const {
+    flat.clear();
+    for (std::size_t t = 0; t < tets_.size(); ++t)
+      if (alive_[t]) flat.insert(flat.end(), tets_[t].begin(), tets_[t].end());
+  }
+
+  void count(double threshold, Index& below, double& worst) const {
+    below = 0, worst = 1.0;
+    for (std::size_t t = 0; t < tets_.size(); ++t)
+      if (alive_[t]) below += q_[t] < threshold, worst = std::min(worst, q_[t]);
+  }
+
+ private:
+  void link_faces();
+  Candidate flip23(Index t, int f) const;
+  Candidate edge_removal(Index t, int la, int lb) const;
+  bool ring_around(Index t, int la, int lb, Ring& ring) const;
+  double old_min(const std::vector<Index>& tets) const {
+    double m = kInf;
+    for (Index t : tets) m = std::min(m, q_[t]);
+    return m;
+  }
+
+  const std::vector<Vec3>& x_;
+  std::vector<Tet> tets_;
+  std::vector<std::array<Index, 4>> nbr_;  // tet across the face opposite each corner, kNoIndex on the surface
+  std::vector<double> q_;
+  std::vector<char> alive_;
+};
+
+// Faces are matched by sorting (face, tet, corner) records: deterministic, no hashing. A face in more than two
+// tets (a non-manifold input) is left unlinked, i.e. surface, so no flip crosses it.
+void FlipMesh::link_faces() {
+  struct Rec {
+    Face f;
+    Index tet;
+    int local;
+  };
+  std::vector<Rec> recs;
+  recs.reserve(4 * tets_.size());
+  for (Index t = 0; t < Index(tets_.size()); ++t)
+    for (int i = 0; i < 4; ++i) {
+      const auto& v = kTetFaces[i];
+      recs.push_back({sorted_face(tets_[t][v[0]], tets_[t][v[1]], tets_[t][v[2]]), t, i});
+    }
+  std::sort(recs.begin(), recs.end(),
+            [](const Rec& r, const Rec& s) { return std::tie(r.f, r.tet) < std::tie(s.f, s.tet); });
+  nbr_.assign(tets_.size(), {kNoIndex, kNoIndex, kNoIndex, kNoIndex});
+  for (std::size_t i = 0; i < recs.size();) {
+    std::size_t j = i;
+    while (j < recs.size() && recs[j].f == recs[i].f) ++j;
+    if (j - i == 2) {
+      nbr_[recs[i].tet][recs[i].local] = recs[i + 1].tet;
+      nbr_[recs[i + 1].tet][recs[i + 1].local] = recs[i].tet;
+    }
+    i = j;
+  }
+}
+
+// 2-3 flip across the face of t opposite corner f: the new edge joins the two apexes. Face (f0, f1, f2) is
+// outward from t, so (d1, f0, f1, f2) is positive and the new tets are (d1, d2, f_k, f_k+1).
+Candidate FlipMesh::flip23(Index t, int f) const {
+  Candidate c;
+  const Index o = nbr_[t][f];
+  if (o == kNoIndex) return c;
+  const Tet& T = tets_[t];
+  const std::array<Index, 3> fv{T[kTetFaces[f][0]], T[kTetFaces[f][1]], T[kTetFaces[f][2]]};
+  Index d2 = kNoIndex;
+  for (Index v : tets_[o])
+    if (v != fv[0] && v != fv[1] && v != fv[2]) d2 = v;
+  c.old_tets = {t, o};
+  c.old_min = old_min(c.old_tets);
+  const double min_q = c.old_min + kMargin;
+  double m = kInf;
+  for (int k = 0; k < 3; ++k) {
+    c.new_tets.push_back({T[f], d2, fv[k], fv[(k + 1) % 3]});
+    m = std::min(m, new_quality(c.new_tets.back()));
+    if (m <= min_q) return Candidate{};  // no improvement: skip the rest
+  }
+  c.kind = 1, c.new_min = m, c.key = sorted_face(fv[0], fv[1], fv[2]);
+  return c;
+}
+
+// Walks across the faces holding edge (a, b) from tet t; false when the ring opens (surface, or a
+// non-manifold edge) or holds more than kMaxRing tets.
+bool FlipMesh::ring_around(Index t, int la, int lb, Ring& ring) const {
+  const Tet& T = tets_[t];
+  int lc = 0;
+  while (lc == la || lc == lb) ++lc;
+  const int ld = 6 - la - lb - lc;
+  const Index a = T[la], b = T[lb];
+  // (a, b, T[ld], T[lc]) is positive when the permutation (la, lb, ld, lc) of the stored order is even.
+  std::array<Index, 4> perm{la, lb, ld, lc};
+  const bool reversed = sort_odd(perm);
+  std::vector<Index> p{T[ld], T[lc]}, tets{t};
+  Index cur = t, ahead = T[lc];  // the ring point whose far face we cross next
+  Index behind = T[ld];
+  for (;;) {
+    int far = 0;  // the corner of cur opposite the face (a, b, ahead)
+    while (tets_[cur][far] == a || tets_[cur][far] == b || tets_[cur][far] == ahead) ++far;
+    if (tets_[cur][far] != behind) return false;  // not a manifold ring (cannot happen in a valid mesh)
+    const Index next = nbr_[cur][far];
+    if (next == kNoIndex) return false;
+    if (next == t) break;
+    if (Index(tets.size()) == kMaxRing) return false;
+    Index e = kNoIndex;
+    for (Index v : tets_[next])
+      if (v != a && v != b && v != ahead) e = v;
+    tets.push_back(next), behind = ahead, ahead = e, cur = next;
+    if (e != p.front()) p.push_back(e);
+  }
+  if (tets.size() < 3 || p.size() != tets.size()) return false;
+  if (reversed) std::reverse(p.begin(), p.end());
+  ring.a = a, ring.b = b;
+  if (a > b) std::swap(ring.a, ring.b), std::reverse(p.begin(), p.end());  // swapping a, b flips the orientation
+  const auto first = std::min_element(p.begin(), p.end());
+  std::rotate(p.begin(), first, p.end());
+  ring.p = std::move(p), ring.tets = std::move(tets);
+  return true;
+}
+
+// Shewchuk's edge removal: the ring polygon p_0..p_n-1 is triangulated, each triangle (p_i, p_k, p_j), i < k < j,
+// giving tets (a, p_i, p_k, p_j) and (b, p_i, p_j, p_k). Dynamic programming over sub-polygons p_i..p_j
+// (Klincsek): best[i][j] = max over k of min(best[i][k], best[k][j], q of the two tets of triangle (i, k, j)),
+// the largest worst quality any triangulation of that sub-polygon gives; best[0][n-1] is the optimum.
+Candidate FlipMesh::edge_removal(Index t, int la, int lb) const {
+  Candidate c;
+  Ring r;
+  if (!ring_around(t, la, lb, r)) return c;
+  c.old_tets = r.tets;
+  c.old_min = old_min(c.old_tets);
+  const double min_q = c.old_min + kMargin;
+  const int n = int(r.p.size());
+  std::array<std::array<double, kMaxRing>, kMaxRing> best;
+  std::array<std::array<int, kMaxRing>, kMaxRing> split;
+  for (int i = 0; i + 1 < n; ++i) best[i][i + 1] = kInf;
+  for (int len = 2; len < n; ++len)
+    for (int i = 0; i + len < n; ++i) {
+      const int j = i + len;
+      best[i][j] = -kInf, split[i][j] = -1;  // -inf: nothing above min_q
+      for (int k = i + 1; k < j; ++k) {
+        // Bound: a split is dropped as soon as it cannot beat both min_q and the best split so far.
+        const double bar = std::max(best[i][j], min_q);
+        double v = std::min(best[i][k], best[k][j]);
+        if (v > bar) v = std::min(v, new_quality({r.a, r.p[i], r.p[k], r.p[j]}));
+        if (v > bar) v = std::min(v, new_quality({r.b, r.p[i], r.p[j], r.p[k]}));
+        if (v > bar) best[i][j] = v, split[i][j] = k;
+      }
+    }
+  if (split[0][n - 1] < 0) return c;
+  std::vector<std::array<int, 2>> stack{{0, n - 1}};
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (j - i < 2) continue;
+    const int k = split[i][j];
+    c.new_tets.push_back({r.a, r.p[i], r.p[k], r.p[j]});
+    c.new_tets.push_back({r.b, r.p[i], r.p[j], r.p[k]});
+    stack.push_back({i, k}), stack.push_back({k, j});
+  }
+  c.kind = 2, c.new_min = best[0][n - 1], c.key = {r.a, r.b, kNoIndex};
+  return c;
+}
+
+// Replaces the cavity: new tets are appended, their faces linked among themselves or, for the cavity's outer
+// faces, to the tet outside (whose back link is redirected) or to nothing (surface).
+void FlipMesh::apply(const Candidate& c) {
+  struct Outer {
+    Face f;
+    Index tet;
+    int local;
+  };
+  std::vector<Outer> outer;
+  const auto in_cavity = [&](Index s) {
+    return std::find(c.old_tets.begin(), c.old_tets.end(), s) != c.old_tets.end();
+  };
+  for (Index t : c.old_tets)
+    for (int i = 0; i < 4; ++i) {
+      const Index o = nbr_[t][i];
+      if (o != kNoIndex && in_cavity(o)) continue;
+      const auto& v = kTetFaces[i];
+      int back = -1;
+      if (o != kNoIndex)
+        for (int j = 0; j < 4; ++j)
+          if (nbr_[o][j] == t) back = j;
+      outer.push_back({sorted_face(tets_[t][v[0]], tets_[t][v[1]], tets_[t][v[2]]), o, back});
+    }
+  for (Index t : c.old_tets) alive_[t] = 0;
+  const Index first = Index(tets_.size());
+  std::vector<Face> faces;  // of the new tets, 4 per tet
+  for (const Tet& T : c.new_tets) {
+    tets_.push_back(T), q_.push_back(quality(T)), alive_.push_back(1);
+    nbr_.push_back({kNoIndex, kNoIndex, kNoIndex, kNoIndex});
+    for (const auto& v : kTetFaces) faces.push_back(sorted_face(T[v[0]], T[v[1]], T[v[2]]));
+  }
+  std::size_t n_outer = 0;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const Index t = first + Index(i / 4);
+    const int local = int(i % 4);
+    std::size_t j = 0;  // the same face in another new tet
+    while (j < faces.size() && (j == i || faces[j] != faces[i])) ++j;
+    if (j < faces.size()) {
+      nbr_[t][local] = first + Index(j / 4);
+      continue;
+    }
+    const auto o = std::find_if(outer.begin(), outer.end(), [&](const Outer& r) { return r.f == faces[i]; });
+    LOOM_ASSERT(o != outer.end(), "a new tet's face is neither inside the cavity nor on its boundary");
+    ++n_outer;
+    nbr_[t][local] = o->tet;
+    if (o->tet != kNoIndex) nbr_[o->tet][o->local] = t;
+  }
+  LOOM_ASSERT(n_outer == outer.size(), "the new tets do not close the cavity");
+  (void)n_outer;
+}
+
+}  // namespace
+
+double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const Vec3 vw = v.cross(w), wu = w.cross(u), uv = u.cross(v);
+  const double det = u.dot(vw);  // 6 V
+  // Circumcentre - a = n / (2 det), so R = |n| / (2 |det|); r_in = 3V / S = |det| / (2 S).
+  const Vec3 n = u.squaredNorm() * vw + v.squaredNorm() * wu + w.squaredNorm() * uv;
+  const double two_s = vw.norm() + wu.norm() + uv.norm() + (v - u).cross(w - u).norm();  // 2 S
+  const double den = two_s * n.norm();
+  if (!(den > 0.0)) return 0.0;
+  return 6.0 * det * std::abs(det) / den;  // 3 r_in / R = 6 det^2 / (2S |n|), with the sign of det
+}
+
+FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings) {
+  FlipMesh mesh(points, tets);
+  FlipStats stats;
+  mesh.count(settings.threshold, stats.below_before, stats.worst_before);
+  for (int pass = 0; pass < settings.max_passes; ++pass) {
+    const std::vector<Index> bad = mesh.bad_tets(settings.threshold);
+    if (bad.empty()) break;
+    ++stats.passes;
+    Index done = 0;
+    for (Index t : bad) {
+      if (!mesh.alive(t)) continue;  // replaced by an earlier flip of this pass
+      const Candidate c = mesh.best_around(t);
+      if (c.kind == 0) continue;
+      mesh.apply(c);
+      ++done;
+      if (c.kind == 1) ++stats.flips23;
+      else if (c.old_tets.size() == 3) ++stats.flips32;
+      else ++stats.edge_removals;
+    }
+    if (done == 0) break;
+  }
+  mesh.count(settings.threshold, stats.below_after, stats.worst_after);
+  mesh.write(tets);
+  return stats;
+}
+
+}  // namespace loom
