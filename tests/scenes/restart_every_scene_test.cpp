@@ -44,6 +44,7 @@ const std::map<std::string, Case>& cases() {
       {"constrained_block_fem", {6, {}}},
       {"constrained_block_pfem", {6, {}}},
       {"constrained_block_pfem_3d", {6, {}}},
+      {"moderate_block_pfem_3d", {6, {}}},
       {"cooks_membrane_3d", {3, {}}},
       {"cooks_membrane_es", {3, {}}},
       {"cooks_membrane_es_u", {3, {}}},
