@@ -5,47 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <stdexcept>
 #include <utility>
 
 namespace loom {
-
-std::vector<BoundaryFace> boundary_faces(const std::vector<Index>& tets) {
-  struct Key {
-    std::array<Index, 3> sorted;
-    Index tet;
-    int local;
-  };
-  std::vector<Key> keys;
-  keys.reserve(tets.size());
-  for (std::size_t t = 0; t < tets.size() / 4; ++t)
-    for (int f = 0; f < 4; ++f) {
-      std::array<Index, 3> s;
-      for (int k = 0; k < 3; ++k) s[std::size_t(k)] = tets[4 * t + std::size_t(kTetFaces[f][k])];
-      std::sort(s.begin(), s.end());
-      keys.push_back({s, Index(t), f});
-    }
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-    return a.sorted != b.sorted ? a.sorted < b.sorted : std::pair(a.tet, a.local) < std::pair(b.tet, b.local);
-  });
-  std::vector<BoundaryFace> faces;
-  for (std::size_t i = 0; i < keys.size();) {
-    std::size_t j = i + 1;
-    while (j < keys.size() && keys[j].sorted == keys[i].sorted) ++j;
-    if (j - i > 2) throw std::runtime_error("tetrahedral mesh: a face is shared by more than two tetrahedra");
-    if (j - i == 1) {
-      const Index* v = tets.data() + 4 * std::size_t(keys[i].tet);
-      const int* f = kTetFaces[keys[i].local];
-      faces.push_back({{v[f[0]], v[f[1]], v[f[2]]}, keys[i].tet, keys[i].local});
-    }
-    i = j;
-  }
-  std::sort(faces.begin(), faces.end(), [](const BoundaryFace& a, const BoundaryFace& b) {
-    return std::pair(a.tet, a.local) < std::pair(b.tet, b.local);
-  });
-  return faces;
-}
-
 namespace {
 
 // Appends (a, b, c, d), swapped to positive orientation.

@@ -39,7 +39,7 @@ inline double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
   return (b - a).cross(c - a).dot(d - a) / 6.0;
 }
 
-// Faces used by one tetrahedron only, outward-oriented, in ascending order of (tet, local face).
+// Faces used by one tetrahedron only, outward-oriented, in ascending order of (tet, local face) (tet_adjacency.cpp).
 struct BoundaryFace {
   std::array<Index, 3> nodes;
   Index tet;

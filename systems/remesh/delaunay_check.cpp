@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_mesh.hpp"
 #include "systems/remesh/point_in_tets.hpp"
 #include "systems/remesh/remesh_3d.hpp"
@@ -13,7 +14,6 @@
 namespace loom {
 namespace {
 
-using Triple = std::array<Index, 3>;
 
 // Whether e lies inside the circumsphere of (a, b, c, d) by more than kDelaunayMargin of its squared radius (a flat
 // cell counts as failing). Not CGAL's exact predicate, and with a margin: five cospherical points (a BCC surface
@@ -40,31 +40,25 @@ double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
 }
 
 // Every interior face locally Delaunay, and every cell that fails the alpha test has a face on the surface.
-bool faces_delaunay_and_no_tear(const std::vector<Vec3>& x, const std::vector<Index>& tets, double alpha,
-                                const std::vector<double>& average_distance, double l_char) {
-  std::vector<std::pair<Triple, std::size_t>> faces;  // sorted face, 4 * tet + opposite corner
-  for (std::size_t t = 0; t + 3 < tets.size(); t += 4)
+bool faces_delaunay_and_no_tear(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr,
+                                double alpha, const std::vector<double>& average_distance, double l_char) {
+  std::vector<char> has_surface_face(nbr.size(), 0);
+  for (std::size_t t = 0; t < nbr.size(); ++t)
     for (std::size_t k = 0; k < 4; ++k) {
-      Triple f{tets[t + std::size_t(kTetFaces[k][0])], tets[t + std::size_t(kTetFaces[k][1])], tets[t + std::size_t(kTetFaces[k][2])]};
-      std::sort(f.begin(), f.end());
-      faces.emplace_back(f, t + k);
-    }
-  std::sort(faces.begin(), faces.end());
-  std::vector<char> has_surface_face(tets.size() / 4, 0);
-  for (std::size_t i = 0; i < faces.size();) {
-    if (i + 1 < faces.size() && faces[i + 1].first == faces[i].first) {
-      const std::size_t a = faces[i].second, b = faces[i + 1].second;
-      const std::size_t ta = a - a % 4;
-      const Vec3& across = x[std::size_t(tets[b])];  // b = (the other cell) + (its corner opposite the shared face)
-      if (strictly_inside_sphere(x[std::size_t(tets[ta])], x[std::size_t(tets[ta + 1])], x[std::size_t(tets[ta + 2])], x[std::size_t(tets[ta + 3])],
-                                 across))
+      const Index o = nbr[t][k];
+      if (o < 0) {
+        has_surface_face[t] = 1;
+        continue;
+      }
+      if (std::size_t(o) < t) continue;  // each interior face once, tested against the cell with the lower index
+      const Index* c = &tets[4 * t];
+      const Index* across = &tets[4 * std::size_t(o)];
+      Index apex = across[0];  // the corner of o off the shared face
+      for (int m = 0; m < 4; ++m)
+        if (across[m] != c[kTetFaces[k][0]] && across[m] != c[kTetFaces[k][1]] && across[m] != c[kTetFaces[k][2]]) apex = across[m];
+      if (strictly_inside_sphere(x[std::size_t(c[0])], x[std::size_t(c[1])], x[std::size_t(c[2])], x[std::size_t(c[3])], x[std::size_t(apex)]))
         return false;
-      i += 2;
-    } else {
-      has_surface_face[faces[i].second / 4] = 1;
-      i += 1;
     }
-  }
   for (std::size_t t = 0; t + 3 < tets.size(); t += 4) {
     if (has_surface_face[t / 4]) continue;
     double l = l_char;
@@ -78,9 +72,10 @@ bool faces_delaunay_and_no_tear(const std::vector<Vec3>& x, const std::vector<In
 }
 
 // No two surfaces within alpha l_char of each other across an empty gap.
-bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tets, double alpha, const std::vector<double>& average_distance,
-                       double l_char) {
-  const std::vector<std::array<Index, 3>> faces = surface_of(tets);
+bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr, double alpha,
+                       const std::vector<double>& average_distance, double l_char) {
+  std::vector<std::array<Index, 3>> faces;
+  for (const BoundaryFace& f : boundary_faces(tets, nbr)) faces.push_back(f.nodes);
   const SurfaceGraph surface(Index(x.size()), faces, x);
   std::vector<Index> points;
   double reach = 0.0;
@@ -114,8 +109,8 @@ bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tet
             const bool apart = surface.component(a) != surface.component(b) ||
                                surface.distance_along(a, b, kMergeDetour3d * gap) >= kMergeDetour3d * gap;
             if (!apart) continue;
-            if (!inside) inside.emplace(x, tets);
-            if (!inside->contains(0.5 * (x[std::size_t(a)] + x[std::size_t(b)]))) return false;
+            if (!inside) inside.emplace(x, tets, &nbr);
+            if (!inside->contains_near(0.5 * (x[std::size_t(a)] + x[std::size_t(b)]), a)) return false;
           }
         }
   }
@@ -124,9 +119,9 @@ bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tet
 
 }  // namespace
 
-bool still_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, double alpha, const std::vector<double>& average_distance,
-                    double l_char) {
-  return faces_delaunay_and_no_tear(x, tets, alpha, average_distance, l_char) && no_merge_possible(x, tets, alpha, average_distance, l_char);
+bool still_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr, double alpha,
+                    const std::vector<double>& average_distance, double l_char) {
+  return faces_delaunay_and_no_tear(x, tets, nbr, alpha, average_distance, l_char) && no_merge_possible(x, tets, nbr, alpha, average_distance, l_char);
 }
 
 }  // namespace loom

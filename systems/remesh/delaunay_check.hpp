@@ -11,15 +11,17 @@
 // cospherical points.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "engine/core/types.hpp"
 
 namespace loom {
 
-// `tets`: 4 point indices each, positively oriented; `average_distance` empty: l_char everywhere, else the local
-// l_char of a cell or a pair of points is the mean over its points.
-bool still_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, double alpha, const std::vector<double>& average_distance,
-                    double l_char);
+// `tets`: 4 point indices each, positively oriented, with their tet_face_neighbours (engine/mesh/tet_adjacency.hpp);
+// `average_distance` empty: l_char everywhere, else the local l_char of a cell or a pair of points is the mean over
+// its points.
+bool still_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& neighbours, double alpha,
+                    const std::vector<double>& average_distance, double l_char);
 
 }  // namespace loom

@@ -15,7 +15,18 @@ Point point(const Vec3& x) { return Point(x.x(), x.y(), x.z()); }
 
 }  // namespace
 
-PointInTets::PointInTets(const std::vector<Vec3>& x, const std::vector<Index>& tets) : x_(x), tets_(tets) {
+PointInTets::PointInTets(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>* neighbours)
+    : x_(x), tets_(tets), neighbours_(neighbours) {
+  if (!neighbours_) return;
+  tet_at_.assign(x.size(), kNoIndex);
+  for (std::size_t t = tets.size() / 4; t-- > 0;)
+    for (std::size_t k = 0; k < 4; ++k) tet_at_[std::size_t(tets[4 * t + k])] = Index(t);
+}
+
+void PointInTets::build_buckets() const {
+  built_ = true;
+  const auto& x = x_;
+  const auto& tets = tets_;
   const std::size_t n = tets.size() / 4;
   if (n == 0) return;
   Vec3 hi = x[std::size_t(tets[0])];
@@ -54,6 +65,7 @@ PointInTets::PointInTets(const std::vector<Vec3>& x, const std::vector<Index>& t
 }
 
 Index PointInTets::find(const Vec3& p) const {
+  if (!built_) build_buckets();
   if (first_.empty()) return kNoIndex;
   long c[3];
   for (int d = 0; d < 3; ++d) {
@@ -79,6 +91,43 @@ Index PointInTets::find(const Vec3& p) const {
       in = o == own || o == CGAL::COPLANAR;
     }
     if (in) return Index(t);
+  }
+  return kNoIndex;
+}
+
+bool PointInTets::contains_near(const Vec3& p, Index near) const {
+  if (neighbours_ && near >= 0 && std::size_t(near) < tet_at_.size() && tet_at_[std::size_t(near)] != kNoIndex &&
+      walk(p, tet_at_[std::size_t(near)]) != kNoIndex)
+    return true;
+  return contains(p);
+}
+
+// A visibility walk with exact orientations: leave through a face that has p strictly on its far side. In a
+// non-Delaunay mesh it may cycle, hence the bound on the steps; any tetrahedron it stops in holds p, so the answer
+// (in or on the union) is the buckets' answer, and an undecided walk defers to them.
+Index PointInTets::walk(const Vec3& p, Index start) const {
+  constexpr int kMaxSteps = 64;
+  const Point q = point(p);
+  Index t = start, from = kNoIndex;
+  for (int step = 0; step < kMaxSteps; ++step) {
+    Point v[4];
+    for (int k = 0; k < 4; ++k) v[k] = point(x_[std::size_t(tets_[4 * std::size_t(t) + std::size_t(k)])]);
+    const CGAL::Orientation own = CGAL::orientation(v[0], v[1], v[2], v[3]);
+    if (own == CGAL::COPLANAR) return kNoIndex;
+    Index next = kNoIndex;
+    for (int k = 0; k < 4; ++k) {
+      const Index across = (*neighbours_)[std::size_t(t)][std::size_t(k)];
+      if (across == from && from != kNoIndex) continue;  // p is not behind the face just crossed
+      Point w[4] = {v[0], v[1], v[2], v[3]};
+      w[k] = q;
+      if (CGAL::orientation(w[0], w[1], w[2], w[3]) == -own) {
+        next = across;
+        if (next < 0) return kNoIndex;  // beyond the surface here: the buckets decide
+        break;
+      }
+    }
+    if (next == kNoIndex) return t;
+    from = t, t = next;
   }
   return kNoIndex;
 }

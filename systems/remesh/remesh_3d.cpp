@@ -2,6 +2,7 @@
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <optional>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_mesh.hpp"
 #include "systems/remesh/delaunay_check.hpp"
 #include "systems/remesh/point_in_tets.hpp"
@@ -21,7 +23,10 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<Index, Kernel>;
-using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CGAL::Delaunay_triangulation_cell_base_3<Kernel>, CGAL::Sequential_tag>;
+// A cell's info: its index among the kept cells (kNoIndex: dropped), so that the kept cells' neighbours are read
+// from the triangulation rather than found again.
+using CellBase = CGAL::Triangulation_cell_base_with_info_3<Index, Kernel, CGAL::Delaunay_triangulation_cell_base_3<Kernel>>;
+using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase, CGAL::Sequential_tag>;
 using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 using Quad = std::array<Index, 4>;
 using Triple = std::array<Index, 3>;
@@ -32,12 +37,6 @@ Triple sorted_face(Index a, Index b, Index c) {
   Triple t{a, b, c};
   std::sort(t.begin(), t.end());
   return t;
-}
-
-Quad sorted_quad(const Index* v) {
-  Quad q{v[0], v[1], v[2], v[3]};
-  std::sort(q.begin(), q.end());
-  return q;
 }
 
 // The distance from p to the triangle (a, b, c) (Ericson, Real-Time Collision Detection §5.1.5).
@@ -63,18 +62,19 @@ double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 
 // What R3.2 reads of the previous mesh.
 struct Previous {
-  std::vector<Quad> cells;            // sorted quadruples, sorted
+  std::optional<TetCellSet> cells;
+  std::vector<std::array<Index, 4>> neighbours;  // tet_face_neighbours
   std::vector<Triple> surface_faces;  // sorted triples, sorted
   std::vector<std::vector<Index>> surface_at;  // per point: the previous surface faces (indices into `faces`) around it
   std::vector<Triple> faces;          // outward
   std::vector<char> on_surface;
 };
 
-Previous read_previous(Index n, const std::vector<Index>& tets) {
+Previous read_previous(Index n, const std::vector<Index>& tets, std::vector<std::array<Index, 4>> neighbours) {
   Previous p;
-  for (std::size_t t = 0; t + 3 < tets.size(); t += 4) p.cells.push_back(sorted_quad(&tets[t]));
-  std::sort(p.cells.begin(), p.cells.end());
-  p.faces = surface_of(tets);
+  p.cells.emplace(tets);
+  p.neighbours = std::move(neighbours);
+  for (const BoundaryFace& f : boundary_faces(tets, p.neighbours)) p.faces.push_back(f.nodes);
   p.on_surface.assign(std::size_t(n), 0);
   p.surface_at.assign(std::size_t(n), {});
   for (std::size_t f = 0; f < p.faces.size(); ++f) {
@@ -143,18 +143,23 @@ struct Classifier {
     return depth >= 0.1 * (3.0 * volume / largest_face);
   }
 
-  Verdict operator()(const Index* v) const {
+  // `outside`: whether the cell holds no material (not a previous cell, and its centroid, summed in canonical_tet's
+  // corner order, outside the previous mesh); v is positively oriented.
+  Verdict operator()(const Index* v, bool& outside) const {
     const Vec3 &a = x[std::size_t(v[0])], &b = x[std::size_t(v[1])], &c = x[std::size_t(v[2])], &d = x[std::size_t(v[3])];
     const double alpha_l = settings.alpha * l_char(v);
     const bool passes = !(alpha_l < circumradius(a, b, c, d));  // eq 16
+    outside = false;
     if (!previous) return passes ? Verdict::keep : Verdict::drop;
-    const Quad key = sorted_quad(v);
-    bool inside = std::binary_search(previous->cells.begin(), previous->cells.end(), key);
+    bool inside = previous->cells->contains(v);
     const bool is_flat = flat(v);
     bool capped = false;
     if (!inside) {
       const Vec3 centroid = (a + b + c + d) / 4.0;
-      inside = in_previous->contains(centroid);
+      inside = in_previous->contains_near(centroid, v[0]);
+      const Quad q = canonical_tet({v[0], v[1], v[2], v[3]});
+      const Vec3 canonical_centroid = (x[std::size_t(q[0])] + x[std::size_t(q[1])] + x[std::size_t(q[2])] + x[std::size_t(q[3])]) / 4.0;
+      outside = canonical_centroid == centroid ? !inside : !in_previous->contains_near(canonical_centroid, q[0]);
       const bool all_on_surface = previous->on_surface[std::size_t(v[0])] && previous->on_surface[std::size_t(v[1])] &&
                                   previous->on_surface[std::size_t(v[2])] && previous->on_surface[std::size_t(v[3])];
       if (inside && all_on_surface && !below_surface(v, centroid, std::abs(volume_of(a, b, c, d)), is_flat)) inside = false, capped = true;
@@ -187,8 +192,8 @@ struct Classifier {
   }
 };
 
+// The result's volume, slivers and isolated points.
 void finish(const std::vector<Vec3>& x, Remesh3dResult& out) {
-  out.surface = surface_of(out.tets);
   std::vector<char> used(x.size(), 0);
   out.volume = 0.0, out.slivers = 0;
   for (std::size_t t = 0; t + 3 < out.tets.size(); t += 4) {
@@ -199,6 +204,66 @@ void finish(const std::vector<Vec3>& x, Remesh3dResult& out) {
     for (std::size_t k = 0; k < 4; ++k) used[std::size_t(out.tets[t + k])] = 1;
   }
   out.isolated = Index(std::count(used.begin(), used.end(), 0));
+}
+
+// The cells R3.2 keeps, with their face neighbours among them (kNoIndex: a dropped or infinite cell across).
+struct Kept {
+  std::vector<Index> tets;                       // positively oriented
+  std::vector<char> outside;                     // per cell: it holds no material
+  std::vector<std::array<Index, 4>> neighbours;  // across the face opposite each corner
+};
+
+// R3.2 over the finite cells of dt; counts the verdicts into out. `first_mesh`: no previous mesh.
+Kept keep_cells(Delaunay& dt, const std::vector<Vec3>& x, const Classifier& classify, bool first_mesh, Remesh3dResult& out) {
+  Kept kept;
+  std::vector<std::pair<Delaunay::Cell_handle, bool>> cells;  // the kept cells, and whether corners 2 and 3 were swapped
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = kNoIndex;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    Index v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+    const bool swapped = volume_of(x[std::size_t(v[0])], x[std::size_t(v[1])], x[std::size_t(v[2])], x[std::size_t(v[3])]) < 0.0;
+    if (swapped) std::swap(v[2], v[3]);
+    bool outside = false;
+    const Verdict verdict = classify(v, outside);
+    if (verdict == Verdict::keep || verdict == Verdict::merge) {
+      c->info() = Index(cells.size());
+      cells.emplace_back(c, swapped);
+      kept.tets.insert(kept.tets.end(), v, v + 4), kept.outside.push_back(outside);
+    }
+    out.merged += verdict == Verdict::merge;
+    out.rejected += verdict == Verdict::tear || (verdict == Verdict::drop && first_mesh);
+    out.capped += verdict == Verdict::cap;
+  }
+  kept.neighbours.resize(cells.size());
+  for (std::size_t t = 0; t < cells.size(); ++t)
+    for (int k = 0; k < 4; ++k) {
+      const int cgal_k = cells[t].second && k >= 2 ? 5 - k : k;  // corners 2 and 3 swapped back
+      kept.neighbours[t][std::size_t(k)] = cells[t].first->neighbor(cgal_k)->info();
+    }
+  return kept;
+}
+
+// R3.5: cells in the order of their sorted corners, each with its corners in canonical_tet's order; and R3.6's
+// surface in boundary_faces' order (ascending cell, local face), read from the neighbours.
+void write_sorted(const Kept& kept, Remesh3dResult& out) {
+  const std::vector<Index> order = tet_sorted_order(kept.tets);
+  std::vector<Index> position(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) position[std::size_t(order[i])] = Index(i);
+  out.tets.reserve(kept.tets.size());
+  out.merged_cell.reserve(order.size());
+  out.neighbours.resize(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::size_t t = std::size_t(order[i]);
+    const Index* v = &kept.tets[4 * t];
+    const Quad q = canonical_tet({v[0], v[1], v[2], v[3]});
+    out.tets.insert(out.tets.end(), q.begin(), q.end());
+    out.merged_cell.push_back(kept.outside[t]);
+    for (int j = 0; j < 4; ++j) {
+      const Index across = kept.neighbours[t][std::size_t(std::find(v, v + 4, q[std::size_t(j)]) - v)];
+      out.neighbours[i][std::size_t(j)] = across == kNoIndex ? kNoIndex : position[std::size_t(across)];
+      if (across == kNoIndex)
+        out.surface.push_back({q[std::size_t(kTetFaces[j][0])], q[std::size_t(kTetFaces[j][1])], q[std::size_t(kTetFaces[j][2])]});
+    }
+  }
 }
 
 }  // namespace
@@ -220,18 +285,9 @@ std::vector<std::array<Index, 3>> surface_of(const std::vector<Index>& tets) {
 }
 
 void average_neighbour_distance_3d(const std::vector<Vec3>& positions, const std::vector<Index>& tets, std::vector<double>& average_distance) {
-  static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  std::vector<std::pair<Index, Index>> edges;
-  for (std::size_t t = 0; t + 3 < tets.size(); t += 4)
-    for (const auto& e : kEdges) {
-      const Index a = tets[t + std::size_t(e[0])], b = tets[t + std::size_t(e[1])];
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<double> sum(positions.size(), 0.0);
   std::vector<int> count(positions.size(), 0);
-  for (const auto& [a, b] : edges) {
+  for (const auto& [a, b] : tet_edges(tets)) {
     const double l = (positions[std::size_t(a)] - positions[std::size_t(b)]).norm();
     sum[std::size_t(a)] += l, sum[std::size_t(b)] += l, ++count[std::size_t(a)], ++count[std::size_t(b)];
   }
@@ -241,15 +297,21 @@ void average_neighbour_distance_3d(const std::vector<Vec3>& positions, const std
 }
 
 void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Index>& previous_tets, const Remesh3dSettings& settings,
-                      const std::vector<double>& average_distance, Remesh3dResult& out) {
+                      const std::vector<double>& average_distance, Remesh3dResult& out,
+                      const std::vector<std::array<Index, 4>>* previous_neighbours) {
   out = Remesh3dResult{};
   const Index n = Index(positions.size());
+  std::vector<std::array<Index, 4>> neighbours;
+  if (!previous_tets.empty())
+    neighbours = previous_neighbours && previous_neighbours->size() == previous_tets.size() / 4 ? *previous_neighbours : tet_face_neighbours(previous_tets);
   // R3.7: a previous mesh that is still Delaunay, tears nowhere and cannot merge is the answer.
   if (settings.keep_delaunay && !previous_tets.empty() &&
-      still_delaunay(positions, previous_tets, settings.alpha, settings.local ? average_distance : std::vector<double>{}, settings.l_char)) {
+      still_delaunay(positions, previous_tets, neighbours, settings.alpha, settings.local ? average_distance : std::vector<double>{}, settings.l_char)) {
     out.tets = previous_tets;
     out.merged_cell.assign(previous_tets.size() / 4, 0);
     out.kept_previous = true;
+    out.neighbours = std::move(neighbours);
+    for (const BoundaryFace& f : boundary_faces(out.tets, out.neighbours)) out.surface.push_back(f.nodes);
     finish(positions, out);
     return;
   }
@@ -257,7 +319,7 @@ void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Inde
   std::vector<std::pair<Kernel::Point_3, Index>> points;
   points.reserve(positions.size());
   for (Index i = 0; i < n; ++i) points.emplace_back(Kernel::Point_3(positions[std::size_t(i)].x(), positions[std::size_t(i)].y(), positions[std::size_t(i)].z()), i);
-  const Delaunay dt(points.begin(), points.end());
+  Delaunay dt(points.begin(), points.end());
   LOOM_CHECK(Index(dt.number_of_vertices()) == n, RunError,
              "remesh: " << n - Index(dt.number_of_vertices()) << " points coincide with others (the body has collapsed)");
 
@@ -266,52 +328,35 @@ void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Inde
   std::optional<PointInTets> in_previous;
   std::optional<SurfaceGraph> surface;
   if (!previous_tets.empty()) {
-    previous = read_previous(n, previous_tets);
-    in_previous.emplace(positions, previous_tets);
+    previous = read_previous(n, previous_tets, std::move(neighbours));
+    in_previous.emplace(positions, previous_tets, &previous->neighbours);
     surface.emplace(n, previous->faces, positions);
   }
   const Classifier classify{positions, settings, average_distance, previous ? &*previous : nullptr, in_previous ? &*in_previous : nullptr,
                             surface ? &*surface : nullptr};
-  std::vector<Index> kept;
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    Index v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
-    if (volume_of(positions[std::size_t(v[0])], positions[std::size_t(v[1])], positions[std::size_t(v[2])], positions[std::size_t(v[3])]) < 0.0)
-      std::swap(v[2], v[3]);
-    switch (classify(v)) {
-      case Verdict::keep: kept.insert(kept.end(), v, v + 4); break;
-      case Verdict::merge: kept.insert(kept.end(), v, v + 4), ++out.merged; break;
-      case Verdict::tear: ++out.rejected; break;
-      case Verdict::cap: ++out.capped; break;
-      case Verdict::drop: if (!previous) ++out.rejected; break;
-    }
-  }
+  Kept kept = keep_cells(dt, positions, classify, !previous, out);
   // R3.4
   if (settings.flip_quality > 0.0) {
     FlipSettings flips;
     flips.threshold = settings.flip_quality;
-    const FlipStats s = improve_by_flips(positions, kept, flips);
+    std::vector<Index> origin;
+    const FlipStats s = improve_by_flips(positions, kept.tets, flips, &origin, &kept.neighbours);
     out.flipped = s.flips23 + s.flips32 + s.edge_removals;
+    // A cell the flips made held no material when it is not a previous cell and its centroid lies outside.
+    std::vector<char> flipped_outside(origin.size());
+    for (std::size_t t = 0; t < origin.size(); ++t) {
+      const Index* v = &kept.tets[4 * t];
+      if (origin[t] != kNoIndex) {
+        flipped_outside[t] = kept.outside[std::size_t(origin[t])];
+      } else if (previous && !previous->cells->contains(v)) {
+        const Quad q = canonical_tet({v[0], v[1], v[2], v[3]});
+        flipped_outside[t] = !in_previous->contains_near(
+            (positions[std::size_t(q[0])] + positions[std::size_t(q[1])] + positions[std::size_t(q[2])] + positions[std::size_t(q[3])]) / 4.0, q[0]);
+      }
+    }
+    kept.outside = std::move(flipped_outside);
   }
-  // R3.5: canonical corners, sorted cells.
-  const std::size_t n_cells = kept.size() / 4;
-  std::vector<Quad> cells(n_cells);
-  for (std::size_t t = 0; t < n_cells; ++t) cells[t] = canonical_tet({kept[4 * t], kept[4 * t + 1], kept[4 * t + 2], kept[4 * t + 3]});
-  std::sort(cells.begin(), cells.end(), [](const Quad& a, const Quad& b) {
-    Quad sa = a, sb = b;
-    std::sort(sa.begin(), sa.end()), std::sort(sb.begin(), sb.end());
-    return sa < sb;
-  });
-  out.tets.clear();
-  out.merged_cell.clear();
-  for (const Quad& q : cells) {
-    out.tets.insert(out.tets.end(), q.begin(), q.end());
-    // A cell outside the previous mesh held no material (after the flips: by its centroid).
-    bool outside = false;
-    if (previous && !std::binary_search(previous->cells.begin(), previous->cells.end(), sorted_quad(q.data())))
-      outside = !in_previous->contains((positions[std::size_t(q[0])] + positions[std::size_t(q[1])] + positions[std::size_t(q[2])] +
-                                        positions[std::size_t(q[3])]) / 4.0);
-    out.merged_cell.push_back(outside ? 1 : 0);
-  }
+  write_sorted(kept, out);  // R3.5
   finish(positions, out);  // R3.6
 }
 

@@ -36,6 +36,7 @@ struct Remesh3dSettings {
 struct Remesh3dResult {
   std::vector<Index> tets;                     // 4 point indices per cell, positively oriented
   std::vector<std::array<Index, 3>> surface;   // faces used by one cell, outward
+  std::vector<std::array<Index, 4>> neighbours;  // tet_face_neighbours of tets (engine/mesh/tet_adjacency.hpp)
   std::vector<char> merged_cell;               // per cell: 1 if it lies outside the previous mesh (it held no material)
   bool kept_previous = false;                  // R3.7: the previous mesh, unchanged
   Index rejected = 0;   // cells inside the previous mesh dropped by the alpha test (the body tearing open)
@@ -48,9 +49,12 @@ struct Remesh3dResult {
 };
 
 // `previous_tets`: the previous mesh on the same points, at `positions` (empty: a first mesh); `average_distance`:
-// one value per point when settings.local (eq 17 on the previous mesh). Coincident points are a RunError.
+// one value per point when settings.local (eq 17 on the previous mesh); `previous_neighbours`: the previous mesh's
+// tet_face_neighbours when known (a previous result's `neighbours`), else they are found. Coincident points are a
+// RunError.
 void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Index>& previous_tets, const Remesh3dSettings& settings,
-                      const std::vector<double>& average_distance, Remesh3dResult& out);
+                      const std::vector<double>& average_distance, Remesh3dResult& out,
+                      const std::vector<std::array<Index, 4>>* previous_neighbours = nullptr);
 
 // eq 17 in 3D: each point's mean distance to its neighbours along the edges of `tets` (0 for points in none).
 void average_neighbour_distance_3d(const std::vector<Vec3>& positions, const std::vector<Index>& tets, std::vector<double>& average_distance);

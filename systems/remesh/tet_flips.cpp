@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>  // cross
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_mesh.hpp"  // kTetFaces
 
 namespace loom {
@@ -67,14 +68,15 @@ struct Ring {
 
 class FlipMesh {
  public:
-  FlipMesh(const std::vector<Vec3>& x, const std::vector<Index>& flat) : x_(x) {
+  FlipMesh(const std::vector<Vec3>& x, const std::vector<Index>& flat, std::vector<std::array<Index, 4>>* neighbours) : x_(x) {
     const std::size_t n = flat.size() / 4;
     tets_.resize(n);
     for (std::size_t t = 0; t < n; ++t) tets_[t] = {flat[4 * t], flat[4 * t + 1], flat[4 * t + 2], flat[4 * t + 3]};
     q_.resize(n);
     for (std::size_t t = 0; t < n; ++t) q_[t] = quality(tets_[t]);
     alive_.assign(n, 1);
-    link_faces();
+    if (neighbours && neighbours->size() == n) nbr_ = std::move(*neighbours);
+    else link_faces(flat);
   }
 
   // q computed on the sorted corners (sign fixed by the parity), so that it depends on the tet alone.
@@ -131,10 +133,24 @@ class FlipMesh {
 
   void apply(const Candidate& c);
 
-  void write(std::vector<Index>& flat) const {
+  void write(std::vector<Index>& flat, std::size_t n_input, std::vector<Index>* origin, std::vector<std::array<Index, 4>>* neighbours) const {
     flat.clear();
+    if (origin) origin->clear();
+    std::vector<Index> renumber(tets_.size(), kNoIndex);
     for (std::size_t t = 0; t < tets_.size(); ++t)
-      if (alive_[t]) flat.insert(flat.end(), tets_[t].begin(), tets_[t].end());
+      if (alive_[t]) {
+        renumber[t] = Index(flat.size() / 4);
+        flat.insert(flat.end(), tets_[t].begin(), tets_[t].end());
+        if (origin) origin->push_back(t < n_input ? Index(t) : kNoIndex);
+      }
+    if (!neighbours) return;
+    neighbours->clear();
+    for (std::size_t t = 0; t < tets_.size(); ++t)
+      if (alive_[t]) {
+        std::array<Index, 4> n = nbr_[t];
+        for (Index& o : n) o = o < 0 ? kNoIndex : renumber[std::size_t(o)];
+        neighbours->push_back(n);
+      }
   }
 
   void count(double threshold, Index& below, double& worst) const {
@@ -144,7 +160,7 @@ class FlipMesh {
   }
 
  private:
-  void link_faces();
+  void link_faces(const std::vector<Index>& flat);
   Candidate flip23(Index t, int f) const;
   Candidate edge_removal(Index t, int la, int lb) const;
   bool ring_around(Index t, int la, int lb, Ring& ring) const;
@@ -161,33 +177,13 @@ class FlipMesh {
   std::vector<char> alive_;
 };
 
-// Faces are matched by sorting (face, tet, corner) records: deterministic, no hashing. A face in more than two
-// tets (a non-manifold input) is left unlinked, i.e. surface, so no flip crosses it.
-void FlipMesh::link_faces() {
-  struct Rec {
-    Face f;
-    Index tet;
-    int local;
-  };
-  std::vector<Rec> recs;
-  recs.reserve(4 * tets_.size());
-  for (Index t = 0; t < Index(tets_.size()); ++t)
-    for (int i = 0; i < 4; ++i) {
-      const auto& v = kTetFaces[i];
-      recs.push_back({sorted_face(tets_[t][v[0]], tets_[t][v[1]], tets_[t][v[2]]), t, i});
-    }
-  std::sort(recs.begin(), recs.end(),
-            [](const Rec& r, const Rec& s) { return std::tie(r.f, r.tet) < std::tie(s.f, s.tet); });
-  nbr_.assign(tets_.size(), {kNoIndex, kNoIndex, kNoIndex, kNoIndex});
-  for (std::size_t i = 0; i < recs.size();) {
-    std::size_t j = i;
-    while (j < recs.size() && recs[j].f == recs[i].f) ++j;
-    if (j - i == 2) {
-      nbr_[recs[i].tet][recs[i].local] = recs[i + 1].tet;
-      nbr_[recs[i + 1].tet][recs[i + 1].local] = recs[i].tet;
-    }
-    i = j;
-  }
+// Faces matched by tet_adjacency (deterministic, no hashing). A face in more than two tets (a non-manifold input) is
+// left unlinked, i.e. surface, so no flip crosses it.
+void FlipMesh::link_faces(const std::vector<Index>& flat) {
+  nbr_ = tet_face_neighbours(flat);
+  for (auto& n : nbr_)
+    for (Index& o : n)
+      if (o == kNonManifold) o = kNoIndex;
 }
 
 // 2-3 flip across the face of t opposite corner f: the new edge joins the two apexes. Face (f0, f1, f2) is
@@ -360,8 +356,10 @@ double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return 6.0 * det * std::abs(det) / den;  // 3 r_in / R = 6 det^2 / (2S |n|), with the sign of det
 }
 
-FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings) {
-  FlipMesh mesh(points, tets);
+FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings,
+                           std::vector<Index>* origin, std::vector<std::array<Index, 4>>* neighbours) {
+  const std::size_t n_input = tets.size() / 4;
+  FlipMesh mesh(points, tets, neighbours);
   FlipStats stats;
   mesh.count(settings.threshold, stats.below_before, stats.worst_before);
   for (int pass = 0; pass < settings.max_passes; ++pass) {
@@ -382,7 +380,7 @@ FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& 
     if (done == 0) break;
   }
   mesh.count(settings.threshold, stats.below_after, stats.worst_after);
-  mesh.write(tets);
+  mesh.write(tets, n_input, origin, neighbours);
   return stats;
 }
 

@@ -6,6 +6,7 @@
 // and the volume are unchanged exactly; no point is moved, added or removed.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -39,6 +40,11 @@ struct FlipStats {
 // created in the order they were made (minus those later flipped again). Deterministic: the visits follow
 // ascending (q, sorted corners) and ties are broken on sorted point indices, so the result (as a set of tets)
 // depends neither on the order of the tets nor on an even permutation of a tet's corners.
-FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings);
+// `origin` (optional): per output tet, its index in the input, or kNoIndex for a tet a flip created.
+// `neighbours` (optional): in, when it has one entry per tet, the input's tet_face_neighbours (engine/mesh/
+// tet_adjacency.hpp, kNoIndex for a non-manifold face), which saves finding them; out, the output's, kNoIndex on the
+// surface.
+FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings,
+                           std::vector<Index>* origin = nullptr, std::vector<std::array<Index, 4>>* neighbours = nullptr);
 
 }  // namespace loom

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_generators.hpp"
 #include "systems/remesh/remesh_3d.hpp"
 
@@ -51,6 +52,15 @@ Remesh3dResult remesh(const std::vector<Vec3>& x, const std::vector<Index>& prev
   average_neighbour_distance_3d(x, previous, h);
   Remesh3dResult r;
   remesh_points_3d(x, previous, s, h, r);
+  // The neighbours and the surface it reads from the triangulation and the flips are those of its cells.
+  EXPECT_EQ(r.neighbours, tet_face_neighbours(r.tets));
+  EXPECT_EQ(r.surface, surface_of(r.tets));
+  // Given the previous mesh's neighbours, it gives the same mesh.
+  Remesh3dResult given;
+  const std::vector<std::array<Index, 4>> previous_neighbours = tet_face_neighbours(previous);
+  remesh_points_3d(x, previous, s, h, given, &previous_neighbours);
+  EXPECT_EQ(given.tets, r.tets);
+  EXPECT_EQ(given.merged_cell, r.merged_cell);
   return r;
 }
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/tet_adjacency.hpp"
 #include "systems/remesh/remesh.hpp"
 #include "systems/remesh/remesh_3d.hpp"
 
@@ -92,7 +93,9 @@ void restore_topology(const CheckpointReader& r, PfemTopology3d& topology, FemMo
     r.vector("topology/tets/" + std::to_string(b), topology.tets[b]);
     for (Index v : topology.tets[b]) r.expect(v >= 0 && v < topology.n_points, "has cells on nodes that are not particles");
     r.expect(topology.tets[b].size() % 4 == 0, "has a broken list of tetrahedra");
-    topology.surface[b] = surface_of(topology.tets[b]);
+    topology.neighbours[b] = tet_face_neighbours(topology.tets[b]);
+    topology.surface[b].clear();
+    for (const BoundaryFace& f : boundary_faces(topology.tets[b], topology.neighbours[b])) topology.surface[b].push_back(f.nodes);
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/mesh/colouring.hpp"
+#include "engine/mesh/tet_adjacency.hpp"
 #include "engine/methods/model/build_boundary_conditions.hpp"
 #include "engine/methods/model/build_solid_3d.hpp"
 #include "engine/methods/pfem/pfem_remesh.hpp"
@@ -157,6 +158,7 @@ PfemTopology3d initial_topology(const FemModelT<3>& m) {
   topo.points_of_body.resize(n_bodies);
   topo.tets.resize(n_bodies);
   topo.surface.resize(n_bodies);
+  topo.neighbours.resize(n_bodies);
   std::vector<char> corner(std::size_t(m.nodes.size()), 0);
   for (const Cells& cb : m.cells)
     for (Index c = 0; c < cb.size(); ++c)
@@ -169,7 +171,10 @@ PfemTopology3d initial_topology(const FemModelT<3>& m) {
     LOOM_ASSERT(corner[std::size_t(i)], "corner nodes must come first");
     topo.points_of_body[std::size_t(m.node_body[std::size_t(i)])].push_back(i);
   }
-  for (std::size_t b = 0; b < n_bodies; ++b) topo.surface[b] = surface_of(topo.tets[b]);
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    topo.neighbours[b] = tet_face_neighbours(topo.tets[b]);
+    for (const BoundaryFace& f : boundary_faces(topo.tets[b], topo.neighbours[b])) topo.surface[b].push_back(f.nodes);
+  }
   // Dead loads on the particles: linear face functions (mid-nodes do not persist).
   topo.tractions = m.bc.traction_faces;
   for (auto& f : topo.tractions) f.nodes[3] = f.nodes[4] = f.nodes[5] = kNoIndex;
@@ -185,6 +190,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   ScopedTimer triangulate(timers, "remesh/triangulate");
   std::vector<std::vector<Index>> tets(n_bodies);
   std::vector<std::vector<std::array<Index, 3>>> surface(n_bodies);
+  std::vector<std::vector<std::array<Index, 4>>> neighbours(n_bodies);
   bool kept_all = true;
   for (std::size_t b = 0; b < n_bodies; ++b) {
     const auto& pts = topo.points_of_body[b];
@@ -196,12 +202,13 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     std::vector<double> h;
     if (settings.remesh_3d.local) average_neighbour_distance_3d(x, previous, h);
     Remesh3dResult r;
-    remesh_points_3d(x, previous, settings.remesh_3d, h, r);
+    remesh_points_3d(x, previous, settings.remesh_3d, h, r, &topo.neighbours[b]);
     LOOM_CHECK(!r.tets.empty() || pts.empty(), RunError,
                "remesh: the alpha test (remesh.alpha = " << settings.remesh_3d.alpha << ") removed every tetrahedron of body \"" << m.scene.bodies[b].name
                                                          << "\": raise remesh.alpha (cells whose circumradius exceeds alpha * l_char are removed)");
     for (Index v : r.tets) tets[b].push_back(pts[std::size_t(v)]);
     for (const auto& f : r.surface) surface[b].push_back({pts[std::size_t(f[0])], pts[std::size_t(f[1])], pts[std::size_t(f[2])]});
+    neighbours[b] = std::move(r.neighbours);
     kept_all = kept_all && r.kept_previous;
     report.rejected += r.rejected, report.isolated += r.isolated, report.merged += r.merged, report.triangles += Index(r.tets.size() / 4);
     report.flipped += r.flipped, report.slivers += r.slivers, report.capped += r.capped;
@@ -217,7 +224,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     }
     std::sort(before.begin(), before.end()), std::sort(after.begin(), after.end());
     report.changed = before != after;
-    if (!report.changed) tets = topo.tets, surface = topo.surface;  // the same cells: keep their order
+    if (!report.changed) tets = topo.tets, surface = topo.surface, neighbours = topo.neighbours;  // the same cells: keep their order
   }
   triangulate.stop();
   bool quadratic = false;
@@ -241,6 +248,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   rebuild_system(m, topo, report.changed);
   topo.tets = std::move(tets);
   topo.surface = std::move(surface);
+  topo.neighbours = std::move(neighbours);
   return report;
 }
 

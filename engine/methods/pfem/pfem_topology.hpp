@@ -45,6 +45,7 @@ struct PfemTopology3d {
   std::vector<std::vector<Index>> points_of_body;
   std::vector<std::vector<Index>> tets;                      // per body: corner connectivity (global indices), 4 per cell
   std::vector<std::vector<std::array<Index, 3>>> surface;    // per body: faces used by one tetrahedron, outward
+  std::vector<std::vector<std::array<Index, 4>>> neighbours;  // per body: tet_face_neighbours of tets (cell indices in the body)
   std::vector<TractionFace> tractions;                       // loaded faces of the initial mesh, on corners (dead loads)
 };
 
