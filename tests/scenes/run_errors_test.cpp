@@ -76,6 +76,19 @@ TEST(RunErrors, PfemAlphaThatRemovesTheWholeBodyStopsAtOnce) {
   EXPECT_EQ(parse_json(read_text(dir.file("run.json"))).at("cutbacks").number, 0.0);
 }
 
+// The same in 3D: a constant l_char of a hundredth of the spacing tears every interior tetrahedron of a BCC block.
+TEST(RunErrors, Pfem3dLcharThatRemovesTheWholeBodyStopsAtOnce) {
+  TempDir dir("errors_alpha_3d");
+  const Command c = run_loom({"run", kSource + "/scenes/homogeneous_compression_3d.toml", "--quiet", "--out", dir.path(), "--set", "scene.method=pfem",
+                              "--set", "body[0].mesh.lattice=bcc", "--set", "body[0].mesh.distortion=0.0", "--set", "remesh.lchar=0.01"});
+  EXPECT_EQ(c.exit_code, 1) << c.err;
+  EXPECT_NE(c.err.find("removed every tetrahedron of body \"block\": raise remesh.alpha, or remesh.lchar"), std::string::npos) << c.err;
+  EXPECT_NE(c.err.find("last converged step 0"), std::string::npos) << c.err;
+  EXPECT_EQ(c.err.find("cutting the step back"), std::string::npos) << c.err;
+  EXPECT_EQ(parse_json(read_text(dir.file("run.json"))).at("cutbacks").number, 0.0);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("homogeneous-compression-3d_000000.vtu")));
+}
+
 // The equal-order mixed element without stabilisation (nu = 0.5) is singular in its spurious pressure modes:
 // UMFPACK's pivot ratio is ~1e-17. The run goes on (it is the Galerkin reference of the stabilisation study)
 // but says that its tangent is singular up to round-off and what that means.

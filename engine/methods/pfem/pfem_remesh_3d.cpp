@@ -205,7 +205,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     remesh_points_3d(x, previous, settings.remesh_3d, h, r, &topo.neighbours[b]);
     LOOM_CHECK(!r.tets.empty() || pts.empty(), RunError,
                "remesh: the alpha test (remesh.alpha = " << settings.remesh_3d.alpha << ") removed every tetrahedron of body \"" << m.scene.bodies[b].name
-                                                         << "\": raise remesh.alpha (cells whose circumradius exceeds alpha * l_char are removed)");
+                                                         << "\": raise remesh.alpha, or remesh.lchar if it is set (cells whose circumradius exceeds alpha * l_char are removed)");
     for (Index v : r.tets) tets[b].push_back(pts[std::size_t(v)]);
     for (const auto& f : r.surface) surface[b].push_back({pts[std::size_t(f[0])], pts[std::size_t(f[1])], pts[std::size_t(f[2])]});
     neighbours[b] = std::move(r.neighbours);
