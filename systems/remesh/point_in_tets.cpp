@@ -24,7 +24,6 @@ PointInTets::PointInTets(const std::vector<Vec3>& x, const std::vector<Index>& t
 }
 
 void PointInTets::build_buckets() const {
-  built_ = true;
   const auto& x = x_;
   const auto& tets = tets_;
   const std::size_t n = tets.size() / 4;
@@ -65,7 +64,7 @@ void PointInTets::build_buckets() const {
 }
 
 Index PointInTets::find(const Vec3& p) const {
-  if (!built_) build_buckets();
+  std::call_once(built_, [this] { build_buckets(); });
   if (first_.empty()) return kNoIndex;
   long c[3];
   for (int d = 0; d < 3; ++d) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <mutex>
 #include <vector>
 
 #include "engine/core/types.hpp"
@@ -15,8 +16,8 @@ class PointInTets {
  public:
   // `tets`: 4 point indices each, either orientation (degenerate ones never hold a point); `x`, `tets` and
   // `neighbours` must outlive this. With `neighbours` (tet_face_neighbours of `tets`), contains_near walks from a
-  // tetrahedron at a given point. The buckets are built at the first query that needs them, so an object is not to
-  // be shared between threads.
+  // tetrahedron at a given point. The buckets are built (once, by whichever thread asks first) at the first query
+  // that needs them; queries may run concurrently.
   PointInTets(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>* neighbours = nullptr);
   // In or on some tetrahedron.
   bool contains(const Vec3& p) const { return find(p) != kNoIndex; }
@@ -35,7 +36,7 @@ class PointInTets {
   const std::vector<Index>& tets_;
   const std::vector<std::array<Index, 4>>* neighbours_ = nullptr;
   std::vector<Index> tet_at_;  // per point: a tetrahedron with it as a corner (with neighbours only)
-  mutable bool built_ = false;
+  mutable std::once_flag built_;
   mutable Vec3 lo_ = Vec3::Zero();
   mutable double scale_ = 1.0;
   mutable long n_[3] = {1, 1, 1};

@@ -5,12 +5,15 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <Eigen/LU>  // determinant
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
 #include "engine/core/errors.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_mesh.hpp"
 #include "systems/remesh/delaunay_check.hpp"
@@ -143,8 +146,9 @@ struct Classifier {
     return depth >= 0.1 * (3.0 * volume / largest_face);
   }
 
-  // `outside`: whether the cell holds no material (not a previous cell, and its centroid, summed in canonical_tet's
-  // corner order, outside the previous mesh); v is positively oriented.
+  // `outside`: whether the cell holds no material (not a previous cell, and its centroid outside the previous mesh);
+  // v is positively oriented, in canonical_tet's order (so that nothing here depends on how the triangulation
+  // stores the cell).
   Verdict operator()(const Index* v, bool& outside) const {
     const Vec3 &a = x[std::size_t(v[0])], &b = x[std::size_t(v[1])], &c = x[std::size_t(v[2])], &d = x[std::size_t(v[3])];
     const double alpha_l = settings.alpha * l_char(v);
@@ -157,9 +161,7 @@ struct Classifier {
     if (!inside) {
       const Vec3 centroid = (a + b + c + d) / 4.0;
       inside = in_previous->contains_near(centroid, v[0]);
-      const Quad q = canonical_tet({v[0], v[1], v[2], v[3]});
-      const Vec3 canonical_centroid = (x[std::size_t(q[0])] + x[std::size_t(q[1])] + x[std::size_t(q[2])] + x[std::size_t(q[3])]) / 4.0;
-      outside = canonical_centroid == centroid ? !inside : !in_previous->contains_near(canonical_centroid, q[0]);
+      outside = !inside;
       const bool all_on_surface = previous->on_surface[std::size_t(v[0])] && previous->on_surface[std::size_t(v[1])] &&
                                   previous->on_surface[std::size_t(v[2])] && previous->on_surface[std::size_t(v[3])];
       if (inside && all_on_surface && !below_surface(v, centroid, std::abs(volume_of(a, b, c, d)), is_flat)) inside = false, capped = true;
@@ -213,32 +215,68 @@ struct Kept {
   std::vector<std::array<Index, 4>> neighbours;  // across the face opposite each corner
 };
 
-// R3.2 over the finite cells of dt; counts the verdicts into out. `first_mesh`: no previous mesh.
+// det [x1 - x0, x2 - x0, x3 - x0] in the corners' order, computed as the elements compute it (tet4_gradients).
+double jacobian(const Quad& q, const std::vector<Vec3>& x) {
+  Mat3 J;
+  for (int j = 0; j < 3; ++j) J.col(j) = x[std::size_t(q[std::size_t(j + 1)])] - x[std::size_t(q[0])];
+  return J.determinant();
+}
+
+// A cell's corners in canonical_tet's order, in the orientation whose Jacobian, computed as the elements will, is
+// positive (a cell flat to round-off may be positive in floating point one way only; if neither, CGAL's exact
+// orientation). Neither choice depends on the order in which the triangulation stores the cell's vertices, so
+// nothing computed from the corners does.
+Quad canonical_corners(const Index* stored, const std::vector<Vec3>& x) {
+  Quad s{stored[0], stored[1], stored[2], stored[3]};
+  std::sort(s.begin(), s.end());
+  const Quad even = canonical_tet(s), odd = canonical_tet({s[0], s[1], s[3], s[2]});
+  if (jacobian(even, x) > 0.0) return even;
+  if (jacobian(odd, x) > 0.0) return odd;
+  auto point = [&](Index v) { return Kernel::Point_3(x[std::size_t(v)].x(), x[std::size_t(v)].y(), x[std::size_t(v)].z()); };
+  return CGAL::orientation(point(s[0]), point(s[1]), point(s[2]), point(s[3])) == CGAL::POSITIVE ? even : odd;
+}
+
+// R3.2 over the finite cells of dt (classified in parallel: each cell's verdict is its own); counts the verdicts
+// into out. `first_mesh`: no previous mesh. What follows depends on the kept cells as a set only (the flips, R3.5's
+// order), not on the order the triangulation stores them in.
 Kept keep_cells(Delaunay& dt, const std::vector<Vec3>& x, const Classifier& classify, bool first_mesh, Remesh3dResult& out) {
-  Kept kept;
-  std::vector<std::pair<Delaunay::Cell_handle, bool>> cells;  // the kept cells, and whether corners 2 and 3 were swapped
+  using Cell = Delaunay::Cell_handle;
+  std::vector<Cell> cells;
+  cells.reserve(dt.number_of_finite_cells());
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = kNoIndex;
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    Index v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
-    const bool swapped = volume_of(x[std::size_t(v[0])], x[std::size_t(v[1])], x[std::size_t(v[2])], x[std::size_t(v[3])]) < 0.0;
-    if (swapped) std::swap(v[2], v[3]);
-    bool outside = false;
-    const Verdict verdict = classify(v, outside);
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) cells.push_back(c);
+  std::vector<Quad> corners(cells.size());
+  std::vector<Verdict> verdicts(cells.size());
+  std::vector<char> outside(cells.size());
+  for_each_index(Index(cells.size()), [&](Index i) {
+    const Cell c = cells[std::size_t(i)];
+    const Index stored[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+    corners[std::size_t(i)] = canonical_corners(stored, x);
+    bool out_of_body = false;
+    verdicts[std::size_t(i)] = classify(corners[std::size_t(i)].data(), out_of_body);
+    outside[std::size_t(i)] = out_of_body;
+  });
+  Kept kept;
+  std::vector<std::size_t> kept_cells;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const Verdict verdict = verdicts[i];
     if (verdict == Verdict::keep || verdict == Verdict::merge) {
-      c->info() = Index(cells.size());
-      cells.emplace_back(c, swapped);
-      kept.tets.insert(kept.tets.end(), v, v + 4), kept.outside.push_back(outside);
+      cells[i]->info() = Index(kept_cells.size());
+      kept_cells.push_back(i);
+      kept.tets.insert(kept.tets.end(), corners[i].begin(), corners[i].end()), kept.outside.push_back(outside[i]);
     }
     out.merged += verdict == Verdict::merge;
     out.rejected += verdict == Verdict::tear || (verdict == Verdict::drop && first_mesh);
     out.capped += verdict == Verdict::cap;
   }
-  kept.neighbours.resize(cells.size());
-  for (std::size_t t = 0; t < cells.size(); ++t)
-    for (int k = 0; k < 4; ++k) {
-      const int cgal_k = cells[t].second && k >= 2 ? 5 - k : k;  // corners 2 and 3 swapped back
-      kept.neighbours[t][std::size_t(k)] = cells[t].first->neighbor(cgal_k)->info();
-    }
+  // The face opposite kept corner k is the one opposite the same vertex in the triangulation's cell.
+  kept.neighbours.resize(kept_cells.size());
+  for (std::size_t t = 0; t < kept_cells.size(); ++t) {
+    const Cell c = cells[kept_cells[t]];
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 4; ++k)
+        if (c->vertex(k)->info() == kept.tets[4 * t + std::size_t(j)]) kept.neighbours[t][std::size_t(j)] = c->neighbor(k)->info();
+  }
   return kept;
 }
 
@@ -315,15 +353,7 @@ void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Inde
     finish(positions, out);
     return;
   }
-  // R3.1
-  std::vector<std::pair<Kernel::Point_3, Index>> points;
-  points.reserve(positions.size());
-  for (Index i = 0; i < n; ++i) points.emplace_back(Kernel::Point_3(positions[std::size_t(i)].x(), positions[std::size_t(i)].y(), positions[std::size_t(i)].z()), i);
-  Delaunay dt(points.begin(), points.end());
-  LOOM_CHECK(Index(dt.number_of_vertices()) == n, RunError,
-             "remesh: " << n - Index(dt.number_of_vertices()) << " points coincide with others (the body has collapsed)");
-
-  // R3.2
+  // R3.2's view of the previous mesh
   std::optional<Previous> previous;
   std::optional<PointInTets> in_previous;
   std::optional<SurfaceGraph> surface;
@@ -334,6 +364,15 @@ void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Inde
   }
   const Classifier classify{positions, settings, average_distance, previous ? &*previous : nullptr, in_previous ? &*in_previous : nullptr,
                             surface ? &*surface : nullptr};
+  // R3.1 and R3.2
+  std::vector<std::pair<Kernel::Point_3, Index>> points;
+  points.reserve(positions.size());
+  for (Index i = 0; i < n; ++i) points.emplace_back(Kernel::Point_3(positions[std::size_t(i)].x(), positions[std::size_t(i)].y(), positions[std::size_t(i)].z()), i);
+  // One thread: CGAL's concurrent insertion (Parallel_tag) was 1.2-1.5 times faster on two quiet cores (a tenth of a
+  // remesh step) but 1.6 times slower with the other core busy, its threads spinning on locks (perf/README.md).
+  Delaunay dt(points.begin(), points.end());
+  LOOM_CHECK(Index(dt.number_of_vertices()) == n, RunError,
+             "remesh: " << n - Index(dt.number_of_vertices()) << " points coincide with others (the body has collapsed)");
   Kept kept = keep_cells(dt, positions, classify, !previous, out);
   // R3.4
   if (settings.flip_quality > 0.0) {

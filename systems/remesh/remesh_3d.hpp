@@ -1,13 +1,15 @@
 // PFEM remeshing on tetrahedra (spec 3d-free-surface §3; seed 001 §3.1's 3D rule with seed 000's alpha test). CGAL
 // has no constrained Delaunay in 3D, so the previous mesh at x_n plays the role the boundary constraints play in 2D:
 //  R3.1 a Delaunay_triangulation_3 of the points (sequential, spatially sorted, degeneracies resolved by a symbolic
-//       perturbation: the result depends on neither the thread count nor the insertion order);
-//  R3.2 every finite cell is kept or dropped: a cell whose centroid lies in the previous mesh (a cell with its four
-//       corners on the previous surface only if the centroid lies a tenth of its smallest altitude below that
-//       surface: not a flat cap on a flat or convex face) is kept when it passes the alpha test (circumradius
-//       <= alpha l_char, eq 16 with eqs 17-18's local l_char) or has a face on the previous surface, and dropped
-//       otherwise (the body tears open inside); a cell outside is kept only when all its edges are within
-//       alpha l_char and it joins two surfaces (surface_graph.hpp) or fills a void of the body (merged);
+//       perturbation: unique, and nothing after depends on the order it stores cells or their vertices in, so the
+//       result depends on neither the thread count nor the insertion order);
+//  R3.2 every finite cell (classified in parallel, on its corners in canonical order) is kept or dropped: a cell
+//       whose centroid lies in the previous mesh (a cell with its four corners on the previous surface only if the
+//       centroid lies a tenth of its smallest altitude below that surface: not a flat cap on a flat or convex face)
+//       is kept when it passes the alpha test (circumradius <= alpha l_char, eq 16 with eqs 17-18's local l_char) or
+//       has a face on the previous surface, and dropped otherwise (the body tears open inside); a cell outside is
+//       kept only when all its edges are within alpha l_char and it joins two surfaces (surface_graph.hpp) or fills a
+//       void of the body (merged);
 //  R3.4 slivers removed by flips with the points fixed (tet_flips.hpp);
 //  R3.5 cells in the order of their sorted corner quadruples, each with its corners in a canonical positive order;
 //  R3.6 the surface: the faces used by one cell, outward;

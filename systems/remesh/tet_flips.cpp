@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>  // cross
 
 #include "engine/core/errors.hpp"
+#include "engine/core/parallel.hpp"
 #include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_mesh.hpp"  // kTetFaces
 
@@ -73,7 +74,7 @@ class FlipMesh {
     tets_.resize(n);
     for (std::size_t t = 0; t < n; ++t) tets_[t] = {flat[4 * t], flat[4 * t + 1], flat[4 * t + 2], flat[4 * t + 3]};
     q_.resize(n);
-    for (std::size_t t = 0; t < n; ++t) q_[t] = quality(tets_[t]);
+    for_each_index(Index(n), [&](Index t) { q_[std::size_t(t)] = quality(tets_[std::size_t(t)]); });
     alive_.assign(n, 1);
     if (neighbours && neighbours->size() == n) nbr_ = std::move(*neighbours);
     else link_faces(flat);

@@ -14,6 +14,9 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <random>
+
+#include <oneapi/tbb/global_control.h>
 
 #include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_generators.hpp"
@@ -260,6 +263,45 @@ TEST(Remesh3d, TheResultDoesNotDependOnThePointOrder) {
   for (Index v : b.tets) back.push_back(n - 1 - v);
   EXPECT_EQ(sorted_cells(back), sorted_cells(a.tets));
   EXPECT_EQ(a.merged, b.merged);
+}
+
+// The cells are classified in parallel and the flips' quality pass runs in parallel: a first mesh of a jittered
+// block of 2.6e4 points, then a step of it, are byte-identical on one and on two threads.
+TEST(Remesh3d, OneAndTwoThreadsGiveTheSameMesh) {
+  TetMeshData box = generate_bcc_box({Vec3::Zero(), Vec3::Ones(), 23, 23, 23});
+  ASSERT_GT(box.X.size(), std::size_t(20000));
+  std::mt19937_64 gen(11);
+  const double h = 1.0 / 23;
+  std::uniform_real_distribution<double> jitter(-0.15 * h, 0.15 * h), step(-0.03 * h, 0.03 * h);
+  for (Vec3& p : box.X) p += Vec3(jitter(gen), jitter(gen), jitter(gen));
+  std::vector<Vec3> moved = box.X;
+  for (Vec3& p : moved) p += Vec3(step(gen), step(gen), step(gen));
+  auto run = [&](int threads, Remesh3dResult& first, Remesh3dResult& next) {
+    oneapi::tbb::global_control limit(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    Remesh3dSettings s = local_alpha();
+    std::vector<double> h_first, h_next;
+    average_neighbour_distance_3d(box.X, box.tets, h_first);
+    remesh_points_3d(box.X, {}, s, h_first, first);
+    average_neighbour_distance_3d(moved, first.tets, h_next);
+    remesh_points_3d(moved, first.tets, s, h_next, next, &first.neighbours);
+  };
+  Remesh3dResult one_first, one_next, two_first, two_next;
+  run(1, one_first, one_next);
+  run(2, two_first, two_next);
+  for (const auto& [a, b] : {std::pair{&one_first, &two_first}, std::pair{&one_next, &two_next}}) {
+    EXPECT_EQ(a->tets, b->tets);
+    EXPECT_EQ(a->surface, b->surface);
+    EXPECT_EQ(a->neighbours, b->neighbours);
+    EXPECT_EQ(a->merged_cell, b->merged_cell);
+    EXPECT_EQ(a->flipped, b->flipped);
+    EXPECT_EQ(a->rejected, b->rejected);
+    EXPECT_EQ(a->merged, b->merged);
+    EXPECT_EQ(a->capped, b->capped);
+    EXPECT_EQ(a->volume, b->volume);
+  }
+  EXPECT_FALSE(one_next.kept_previous);  // a full remesh, with the previous mesh's classification
+  EXPECT_GT(one_first.flipped, 0);
+  EXPECT_EQ(one_next.neighbours, tet_face_neighbours(one_next.tets));
 }
 
 TEST(Remesh3d, CanonicalCornersKeepTheOrientation) {
