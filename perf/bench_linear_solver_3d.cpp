@@ -10,6 +10,10 @@
 //   cg_ic            Eigen's ConjugateGradient with its IncompleteCholesky preconditioner (AMD ordering,
 //                    fill by its default dual threshold), relative residual 1e-8
 //   cg_jacobi        the same with the diagonal preconditioner
+//   petsc_gamg       solver.linear = "petsc" as a run uses it (engine/linalg/petsc_solver.cpp): CG + GAMG with the
+//                    rigid-body modes, relative residual 1e-8 (unpreconditioned); built with PETSc only. Also
+//                    resetup_s / resolve_s / reiterations: a second set-up of the same values (GAMG keeps its
+//                    interpolation, as between Newton iterations) and its solve
 //
 // Counters: analyze_s, factorize_s (the preconditioner's set-up for cg_*), solve_s, iterations (cg_*),
 // factor_entries and gflop (what the back-end reports; CHOLMOD predicts both at analysis), rss_mb (resident
@@ -47,6 +51,7 @@ using loom::perf::seconds;
 struct Problem {
   SparseMatrix K;  // free dofs only
   Eigen::VectorXd b;
+  loom::SolveStructure structure;  // dofs and node coordinates (petsc_gamg's near-null space)
 };
 
 // Resident set size in MB (Linux /proc/self/statm, pages of 4 KiB).
@@ -130,6 +135,9 @@ const Problem& problem_of(int n, int nen, int nu_permille = 300) {
   const double nu = 1e-3 * nu_permille;
   if (nen == 4) assemble<4>(X, connectivity, dofs, scatter, nu, p->K, p->b);
   else assemble<10>(X, connectivity, dofs, scatter, nu, p->K, p->b);
+  p->structure.dim = 3;
+  p->structure.dofs = dofs;
+  for (const loom::Vec3& x : X) p->structure.coordinates.insert(p->structure.coordinates.end(), {x.x(), x.y(), x.z()});
   return *p;
 }
 
@@ -206,6 +214,38 @@ void BM_ConjugateGradient(benchmark::State& state) {
   report(state, p, x);
 }
 
+void BM_Petsc(benchmark::State& state) {
+  const Problem& p = problem_of(int(state.range(0)), int(state.range(1)), int(state.range(3)));
+  Eigen::VectorXd x;
+  for (auto _ : state) {
+    auto solver = loom::make_petsc_solver(1e-8, "");
+    solver->set_structure(p.structure);
+    const double rss0 = rss_mb();
+    const auto t0 = Clock::now();
+    solver->analyze(p.K);
+    const auto t1 = Clock::now();
+    const bool set_up = solver->factorize(p.K);
+    const auto t2 = Clock::now();
+    if (!set_up || !solver->solve(p.b, x)) {  // no second solve on a failed one
+      state.SkipWithError(solver->failure_reason().c_str());
+      break;
+    }
+    const auto t3 = Clock::now();
+    state.counters["rss_mb"] = rss_mb() - rss0;
+    const long long first = solver->iterations();
+    solver->factorize(p.K);
+    const auto t4 = Clock::now();
+    solver->solve(p.b, x);
+    const auto t5 = Clock::now();
+    state.SetIterationTime(seconds(t0, t3));
+    state.counters["analyze_s"] = seconds(t0, t1), state.counters["factorize_s"] = seconds(t1, t2);
+    state.counters["solve_s"] = seconds(t2, t3), state.counters["iterations"] = double(first);
+    state.counters["resetup_s"] = seconds(t3, t4), state.counters["resolve_s"] = seconds(t4, t5);
+    state.counters["reiterations"] = double(solver->iterations() - first);
+  }
+  report(state, p, x);
+}
+
 // n = 14, 30, 46, 68: 9.5e3, 9.0e4, 3.1e5, 9.7e5 free dofs (tet4 of n, tet10 of n / 2).
 void sizes(benchmark::internal::Benchmark* b, std::initializer_list<int> ns, std::initializer_list<int> nus = {300}) {
   for (int n : ns)
@@ -224,6 +264,11 @@ int main(int argc, char** argv) {
         {14, 30, 46, 68}, {300, 490});
   sizes(benchmark::RegisterBenchmark("cg_jacobi", BM_ConjugateGradient<Eigen::DiagonalPreconditioner<double>>), {14, 30, 46, 68},
         {300, 490});
+  if (loom::petsc_solver_problem().empty())  // one thread: PETSc runs on one core per process
+    for (int n : {14, 30, 46, 68})
+      for (int nen : {4, 10})
+        for (int nu : {300, 490})
+          benchmark::RegisterBenchmark("petsc_gamg", BM_Petsc)->Args({n, nen, 1, nu})->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
   benchmark::RegisterBenchmark("analysis_only", BM_AnalysisOnly)
       ->Args({46, 4, 1})->Args({46, 10, 1})->Args({68, 4, 1})->Args({68, 10, 1})
       ->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);

@@ -6,12 +6,14 @@ cd "$(dirname "$0")/.."
 
 # xvfb: tools/render draws off-screen through an X server of its own (Debian's VTK 9.1 renders through X).
 # Packages are installed without their Recommends, so every recommended package that a test uses is listed:
-# xauth (xvfb-run needs it; only recommended by xvfb).
+# xauth (xvfb-run needs it; only recommended by xvfb). libpetsc-real-dev (with Open MPI, hypre, MUMPS: about 50 packages,
+# 200 MB) builds the plugin of solver.linear = "petsc" (docs/petsc.md); loom builds without it.
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libtbb-dev libcgal-dev libsuitesparse-dev libopenblas0-pthread
   libvtk9-dev libbenchmark-dev libgtest-dev libgmock-dev libtomlplusplus-dev libmuparser-dev libgmsh-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
+  libpetsc-real-dev
 )
 
 missing=()

@@ -115,6 +115,8 @@ void summarise_linear_solver(const LinearSolve& solver, RunSummary& summary) {
   summary.factorizations = solver.factorizations();
   summary.reused_solves = solver.reused_solves();
   summary.gmres_iterations = solver.gmres_iterations();
+  summary.linear_iterations = solver.linear_iterations();
+  summary.preconditioner_set_ups = solver.preconditioner_set_ups();
 }
 
 }  // namespace loom

@@ -26,6 +26,8 @@ struct RunSummary {
   // Numeric factorisations of this process (not those before a restart) and, with solver.reuse_factor, the
   // linear solves done by GMRES on a kept factorisation and their GMRES iterations.
   long long factorizations = 0, reused_solves = 0, gmres_iterations = 0;
+  // Krylov iterations and preconditioner set-ups of an iterative back-end (petsc), this process.
+  long long linear_iterations = 0, preconditioner_set_ups = 0;
   long long dofs = 0, cells = 0;
   int threads = 0;
 };

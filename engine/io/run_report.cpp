@@ -56,6 +56,8 @@ std::string run_json(const RunIdentity& id, const RunSummary& s) {
      << "  \"factorizations\": " << s.factorizations << ",\n"
      << "  \"reused_solves\": " << s.reused_solves << ",\n"
      << "  \"gmres_iterations\": " << s.gmres_iterations << ",\n"
+     << "  \"linear_iterations\": " << s.linear_iterations << ",\n"
+     << "  \"preconditioner_set_ups\": " << s.preconditioner_set_ups << ",\n"
      << "  \"wall_seconds\": " << s.wall_seconds << ",\n"
      << "  \"failure\": \"" << json_escape(s.failure) << "\"\n"
      << "}\n";

@@ -3,12 +3,16 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/UmfPackSupport>
 
+#include "engine/core/errors.hpp"
 #include "engine/linalg/bisected_cholesky.hpp"
 #include "engine/linalg/cholmod_lower.hpp"
 #include "engine/linalg/factor_preconditioned_gmres.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 #include <vector>
@@ -203,8 +207,9 @@ std::unique_ptr<LinearSolver> make_umfpack_solver(double wide_above) { return st
 namespace {
 
 // The back-end of a kind; automatic starts with CHOLMOD.
-std::unique_ptr<LinearSolver> make_backend(LinearSolverKind kind, double cg_tolerance) {
+std::unique_ptr<LinearSolver> make_backend(LinearSolverKind kind, double cg_tolerance, const std::string& options, bool reuse) {
   switch (kind) {
+    case LinearSolverKind::petsc: return make_petsc_solver(cg_tolerance, options, reuse);
     case LinearSolverKind::umfpack: return make_umfpack_solver();
     case LinearSolverKind::cg: return make_cg_solver(cg_tolerance);
     case LinearSolverKind::cholmod_bisected: return make_bisected_cholmod_solver();
@@ -216,9 +221,56 @@ std::unique_ptr<LinearSolver> make_backend(LinearSolverKind kind, double cg_tole
 
 }  // namespace
 
-LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance, bool reuse_factor)
-    : kind_(kind), cg_tolerance_(cg_tolerance), reuse_factor_(reuse_factor && kind != LinearSolverKind::cg),
-      solver_(make_backend(kind, cg_tolerance)) {}
+namespace {
+
+using PetscFactory = LinearSolver* (*)(double, const char*, int);
+
+// Opens the plugin once (RTLD_GLOBAL: Open MPI opens components of its own that need its symbols).
+PetscFactory petsc_factory(std::string* problem) {
+  static std::string why;
+  static PetscFactory factory = [] () -> PetscFactory {
+    const char* moved = std::getenv("LOOM_PETSC_PLUGIN");  // where the plugin is, if not where it was built
+    const std::string path = moved ? moved : LOOM_PETSC_PLUGIN;
+    if (path.empty()) {
+      why = "this loom was built without PETSc (install Debian's libpetsc-real-dev and configure again; tools/setup.sh does)";
+      return nullptr;
+    }
+    void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    if (!lib) {
+      why = std::string("the PETSc plugin does not load: ") + dlerror();
+      return nullptr;
+    }
+    auto f = reinterpret_cast<PetscFactory>(dlsym(lib, "loom_make_petsc_solver"));
+    auto interface = reinterpret_cast<int (*)()>(dlsym(lib, "loom_petsc_interface"));
+    if (!f || !interface) why = path + " is not loom's PETSc plugin";
+    else if (interface() != kLinearSolverInterface) why = path + " was built from another version of loom: build it again";
+    return why.empty() ? f : nullptr;
+  }();
+  if (problem) *problem = why;
+  return factory;
+}
+
+}  // namespace
+
+std::string petsc_solver_problem() {
+  std::string problem;
+  petsc_factory(&problem);
+  return problem;
+}
+
+std::unique_ptr<LinearSolver> make_petsc_solver(double tolerance, const std::string& options, bool reuse) {
+  std::string problem;
+  const PetscFactory factory = petsc_factory(&problem);
+  LOOM_CHECK(factory != nullptr, InputError, "solver.linear = \"petsc\": " << problem);
+  LinearSolver* solver = factory(tolerance, options.c_str(), reuse ? 1 : 0);
+  if (!solver) throw std::runtime_error("solver.linear = \"petsc\": MPI or PETSc did not start (MPI_Init_thread or PetscInitialize failed)");
+  return std::unique_ptr<LinearSolver>(solver);
+}
+
+LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance, bool reuse_factor, std::string backend_options)
+    : kind_(kind), cg_tolerance_(cg_tolerance), backend_options_(std::move(backend_options)), reuse_requested_(reuse_factor),
+      reuse_factor_(reuse_factor && kind != LinearSolverKind::cg && kind != LinearSolverKind::petsc),
+      solver_(make_backend(kind, cg_tolerance, backend_options_, reuse_factor)) {}
 
 LinearSolve::~LinearSolve() = default;
 
@@ -253,10 +305,12 @@ bool LinearSolve::factorize_now(const SparsePattern& pattern) {
       min_rcond_ = std::min(min_rcond_, std::isfinite(rcond) ? rcond : 0.0);
       return true;
     }
+    LOOM_CHECK(solver_->input_problem().empty(), InputError, options_where_ << ": error: solver.petsc_options: " << solver_->input_problem());
     if (kind_ != LinearSolverKind::automatic || std::string(solver_->name()) == "umfpack") {
       min_rcond_ = 0.0;
       const std::string name = solver_->name();
-      failure_ = name == "umfpack" ? "the tangent matrix is singular (UMFPACK met a zero pivot)"
+      failure_ = !solver_->failure_reason().empty() ? solver_->failure_reason()
+                 : name == "umfpack" ? "the tangent matrix is singular (UMFPACK met a zero pivot)"
                  : name == "cg"    ? "the tangent matrix has a diagonal entry <= 0, so it is not positive definite (solver.linear = \"cg\" "
                                      "needs a positive definite matrix; \"umfpack\" takes any)"
                                    : "the tangent matrix is not positive definite, or singular (" + name +
@@ -295,7 +349,9 @@ bool LinearSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     if (!factorize_deferred()) return false;
   }
   if (solver_->solve(b, x)) return true;
-  failure_ = std::string(solver_->name()) == "cg"
+  LOOM_CHECK(solver_->input_problem().empty(), InputError, options_where_ << ": error: solver.petsc_options: " << solver_->input_problem());
+  failure_ = !solver_->failure_reason().empty() ? solver_->failure_reason()
+             : std::string(solver_->name()) == "cg"
                  ? "conjugate gradients did not reach solver.linear_tolerance within twice as many iterations as unknowns (the tangent "
                    "is not positive definite, or too ill-conditioned for a diagonal preconditioner; try \"umfpack\")"
                  : "the back-substitution failed";
@@ -307,9 +363,9 @@ std::string LinearSolve::backend() const { return solver_->name(); }
 void LinearSolve::use_backend(const std::string& name) {
   if (name == solver_->name()) return;
   LinearSolverKind kind = LinearSolverKind::cholmod;  // a back-end's name() is its kind's scene word
-  for (auto k : {LinearSolverKind::umfpack, LinearSolverKind::cg, LinearSolverKind::cholmod_bisected})
+  for (auto k : {LinearSolverKind::umfpack, LinearSolverKind::cg, LinearSolverKind::cholmod_bisected, LinearSolverKind::petsc})
     if (name == linear_solver_key(k)) kind = k;
-  solver_ = make_backend(kind, cg_tolerance_);
+  solver_ = make_backend(kind, cg_tolerance_, backend_options_, reuse_requested_);
   analysed_version_ = 0;
   have_factor_ = false;
 }

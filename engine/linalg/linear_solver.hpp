@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "engine/linalg/dof_map.hpp"
 #include "engine/linalg/sparse_pattern.hpp"
 
 namespace loom {
 
-enum class LinearSolverKind { automatic, cholmod, umfpack, cg, cholmod_bisected };
+enum class LinearSolverKind { automatic, cholmod, umfpack, cg, cholmod_bisected, petsc };
 
 // The back-ends that take only symmetric positive definite matrices.
 inline bool needs_spd(LinearSolverKind k) {
@@ -25,6 +27,7 @@ inline const char* linear_solver_name(LinearSolverKind k) {
     case LinearSolverKind::umfpack: return "umfpack";
     case LinearSolverKind::cg: return "cg (conjugate gradients, diagonal preconditioner)";
     case LinearSolverKind::cholmod_bisected: return "cholmod_bisected (two halves concurrently, Schur complement of the separator)";
+    case LinearSolverKind::petsc: return "petsc (Krylov with algebraic multigrid, engine/linalg/petsc_solver.cpp)";
   }
   return "?";
 }
@@ -37,9 +40,18 @@ inline const char* linear_solver_key(LinearSolverKind k) {
     case LinearSolverKind::umfpack: return "umfpack";
     case LinearSolverKind::cg: return "cg";
     case LinearSolverKind::cholmod_bisected: return "cholmod_bisected";
+    case LinearSolverKind::petsc: return "petsc";
   }
   return "?";
 }
+
+// What an iterative back-end needs to know of the equations beyond the matrix (the multigrid's near-null space and
+// the fields of a mixed system): the dof numbering and the coordinates of the nodes (dim per node).
+struct SolveStructure {
+  int dim = 0;
+  DofMap dofs;
+  std::vector<double> coordinates;
+};
 
 class LinearSolver {
  public:
@@ -58,7 +70,31 @@ class LinearSolver {
   virtual FactorSize factor_size() { return {}; }
   // False for an iterative back-end: it has no pivots, and rcond() means nothing.
   virtual bool estimates_condition() const { return true; }
+  // An iterative back-end that builds its preconditioner from the equations' structure says so; set_structure()
+  // then comes before every analyze() of a new pattern.
+  virtual bool wants_structure() const { return false; }
+  virtual void set_structure(SolveStructure) {}
+  // Why the last factorize() or solve() returned false, in the back-end's words ("" if it has none).
+  virtual std::string failure_reason() const { return {}; }
+  // Non-empty when a solve failed because of the scene (an option the back-end does not know): bad input, not a
+  // failed Newton iteration.
+  virtual std::string input_problem() const { return {}; }
+  // Krylov iterations of all solves so far (0 for a direct back-end).
+  virtual long long iterations() const { return 0; }
+  // Preconditioner set-ups of an iterative back-end (fewer than factorize() calls when it keeps one).
+  virtual long long preconditioner_set_ups() const { return 0; }
 };
+
+// Raised whenever LinearSolver or SolveStructure changes layout: the plugin and the program that opens it must agree.
+inline constexpr int kLinearSolverInterface = 1;
+
+// The PETSc back-end is a plugin (libloom_petsc.so, engine/linalg/petsc_solver.cpp) opened the first time a run asks
+// for it, so that the processes that never do neither load PETSc's libraries nor start MPI. Empty if it can be
+// opened, else why not (built without PETSc, or the plugin does not load).
+std::string petsc_solver_problem();
+// options: solver.petsc_options; tolerance: solver.linear_tolerance; reuse: solver.reuse_factor (keep the preconditioner
+// while it serves: rebuilt when a solve needs more than twice the iterations of the first one after its set-up).
+std::unique_ptr<LinearSolver> make_petsc_solver(double tolerance, const std::string& options, bool reuse = false);
 
 std::unique_ptr<LinearSolver> make_cholmod_solver();  // supernodal LL^T, SPD only
 // General sparse LU. Above `wide_above` Units (8 bytes) of estimated workspace it factorises with 64-bit indices
@@ -86,7 +122,10 @@ class LinearSolve {
   static constexpr int kReuseIterations = 20, kRefactorAbove = 8;
   // cg_tolerance: the relative residual each solve of kind cg, or each GMRES solve with reuse_factor, reaches
   // (unused by the direct back-ends otherwise).
-  explicit LinearSolve(LinearSolverKind kind, double cg_tolerance = kDefaultCgTolerance, bool reuse_factor = false);
+  // backend_options: solver.petsc_options (kind petsc only). With kind petsc, reuse_factor keeps the preconditioner
+  // in the back-end instead (make_petsc_solver).
+  explicit LinearSolve(LinearSolverKind kind, double cg_tolerance = kDefaultCgTolerance, bool reuse_factor = false,
+                       std::string backend_options = {});
   ~LinearSolve();
   // The symbolic analysis (fill-reducing ordering, elimination tree, supernodes) of pattern.matrix, if its
   // pattern is not the one analysed last; true if it ran.
@@ -108,6 +147,14 @@ class LinearSolve {
   // matrix was not positive definite), so that it factorizes as that run would have.
   void use_backend(const std::string& name);
   int analyses() const { return analyses_; }
+  // Whether the back-end wants the structure of the equations (SolveStructure), and giving it: call before the
+  // analysis of every new pattern (solve_linear_step and solve_grid_step do).
+  bool wants_structure() const { return solver_->wants_structure(); }
+  void set_structure(SolveStructure structure) { solver_->set_structure(std::move(structure)); }
+  long long linear_iterations() const { return solver_->iterations(); }
+  // Where the back-end's options come from (solver.petsc_options' file:line), for the error a bad option raises.
+  void set_options_where(std::string where) { options_where_ = std::move(where); }
+  long long preconditioner_set_ups() const { return solver_->preconditioner_set_ups(); }
   // Why the last factorize returned false.
   const std::string& failure() const { return failure_; }
   // The smallest pivot-based estimate of 1 / cond since reset_condition() (0 after a singular matrix; stays
@@ -130,6 +177,9 @@ class LinearSolve {
 
   LinearSolverKind kind_;
   double cg_tolerance_;
+  std::string backend_options_;
+  std::string options_where_ = "the scene";
+  bool reuse_requested_;  // solver.reuse_factor as the scene gave it (petsc: the back-end keeps its preconditioner)
   bool reuse_factor_;
   bool have_factor_ = false;     // solver_ holds a factorisation of a matrix of the analysed pattern
   bool refactor_next_ = false;   // the last GMRES solve was slow: factorise at the next factorize()

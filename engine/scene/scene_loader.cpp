@@ -173,12 +173,21 @@ class Loader {
                                                                   {"cholmod", LinearSolverKind::cholmod},
                                                                   {"umfpack", LinearSolverKind::umfpack},
                                                                   {"cg", LinearSolverKind::cg},
-                                                                  {"cholmod_bisected", LinearSolverKind::cholmod_bisected}});
+                                                                  {"cholmod_bisected", LinearSolverKind::cholmod_bisected},
+                                                                  {"petsc", LinearSolverKind::petsc}});
     s.solver.linear_where = t.has("linear") ? t.where("linear") : t.where();
     s.solver.linear_tolerance = t.real("linear_tolerance");
     s.solver.tangent = pick<TangentUpdate>(t.string("tangent"), {{"every_iteration", TangentUpdate::every_iteration},
                                                                  {"once_per_step", TangentUpdate::once_per_step}});
     s.solver.reuse_factor = t.boolean("reuse_factor");
+    s.solver.petsc_options = t.string("petsc_options");
+    s.solver.petsc_options_where = t.has("petsc_options") ? t.where("petsc_options") : t.where();
+    if (s.solver.linear == LinearSolverKind::petsc) {
+      const std::string problem = petsc_solver_problem();
+      if (!problem.empty()) t.error("linear", "solver.linear = \"petsc\": " + problem);
+    } else if (!s.solver.petsc_options.empty()) {
+      t.error("petsc_options", "solver.petsc_options applies only with solver.linear = \"petsc\"");
+    }
     if (s.solver.reuse_factor && s.solver.linear == LinearSolverKind::cg)
       t.error("reuse_factor", "solver.linear = \"cg\" has no factorisation to reuse; use a direct back-end or reuse_factor = false");
     if (s.solver.reuse_factor && s.solver.tangent == TangentUpdate::once_per_step)

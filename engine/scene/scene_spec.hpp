@@ -86,6 +86,8 @@ struct SolverSpec {
   double linear_tolerance = kDefaultCgTolerance;  // cg, and GMRES with reuse_factor: relative residual of each linear solve
   TangentUpdate tangent = TangentUpdate::every_iteration;
   bool reuse_factor = false;  // GMRES preconditioned by the last factorisation of the pattern (LinearSolve)
+  std::string petsc_options;  // linear = petsc: PETSc options after loom's defaults
+  SourceRef petsc_options_where;
 };
 
 // Elastic constants are kept in both forms; the loader derives the missing pair.

@@ -15,10 +15,17 @@ void add_solver_keys(std::vector<KeySpec>& s) {
                   "Linear solver: cholmod (SPD), umfpack (general LU), auto (CHOLMOD, UMFPACK if not positive definite), cg (conjugate "
                   "gradients with the diagonal preconditioner, SPD: for systems too large to factorise, from about 3e5 dofs in 3D; "
                   "slow near incompressibility; docs/solvers_3d.md), cholmod_bisected (SPD: CHOLMOD on the two halves of a bisection at once, "
-                  "joined by the separator's Schur complement: uses two cores on large 2D systems; perf/compare/README.md).")
-                  .one_of({"auto", "cholmod", "umfpack", "cg", "cholmod_bisected"}).by_default("auto"));
+                  "joined by the separator's Schur complement: uses two cores on large 2D systems; perf/compare/README.md), petsc (PETSc's "
+                  "Krylov solvers with algebraic multigrid: CG or GMRES with GAMG and the rigid-body modes, a Schur-complement "
+                  "fieldsplit for mixed elements; for systems too large to factorise; docs/petsc.md).")
+                  .one_of({"auto", "cholmod", "umfpack", "cg", "cholmod_bisected", "petsc"}).by_default("auto"));
+  s.push_back(key("solver.petsc_options", K::string,
+                  "solver.linear = \"petsc\": PETSc options that replace loom's defaults, e.g. \"-ksp_type gmres -pc_type ilu\" or "
+                  "\"-pc_type lu -pc_factor_mat_solver_type mumps\" (the environment's PETSC_OPTIONS also apply, before these). "
+                  "Options PETSc never used are reported at the end of the run.")
+                  .by_default("\"\""));
   s.push_back(key("solver.linear_tolerance", K::real,
-                  "cg: each linear solve stops at |K du + r| <= linear_tolerance |r|; reuse_factor: each GMRES solve stops at "
+                  "cg and petsc: each linear solve stops at |K du + r| <= linear_tolerance |r|; reuse_factor: each GMRES solve stops at "
                   "|M^-1 (K du + r)| <= linear_tolerance |M^-1 r|, M the kept factorisation (the increment's relative error). Newton "
                   "then converges as with a direct solver while linear_tolerance is well below solver.residual_relative.")
                   .by_default("1e-10").above(0).below(1));
@@ -31,7 +38,9 @@ void add_solver_keys(std::vector<KeySpec>& s) {
                   "steps) and solve each new tangent by GMRES preconditioned with it, to solver.linear_tolerance; factorise afresh when "
                   "GMRES needs more than 8 iterations, or fails in 20. Newton stays exact (unlike once_per_step); the iterates differ "
                   "from a fresh factorisation's by linear_tolerance, so a restarted run is not the same bit for bit. For direct "
-                  "back-ends: pays where factorising dominates a step (es_pfem at 10^3 to 10^4 dofs; perf/README.md).")
+                  "back-ends: pays where factorising dominates a step (es_pfem at 10^3 to 10^4 dofs; perf/README.md). With petsc: "
+                  "the preconditioner (the multigrid hierarchy) is kept instead, and set up afresh when a solve needs more than "
+                  "twice the iterations of the first solve after its set-up.")
                   .by_default("false"));
 }
 

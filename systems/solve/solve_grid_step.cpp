@@ -8,6 +8,7 @@ namespace loom {
 template <int D>
 LinearSolveStatus solve_grid_step(const Nodes<D>& g, const BoundaryConditions<D>& bc, LinearSolve& solver, LinearSystem& system,
                                   Timers& timers) {
+  give_structure(g, false, solver, system);
   if (solve_free_dofs(solver, system, timers) != LinearSolveStatus::ok) return LinearSolveStatus::singular;
   const DofMap& dofs = system.dofs;
   const int pn = dofs.per_node;

@@ -1,5 +1,6 @@
 #include "systems/solve/solve_linear_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/parallel.hpp"
@@ -35,8 +36,22 @@ LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Tim
 }
 
 template <int D>
+void give_structure(const Nodes<D>& nodes, bool current, LinearSolve& solver, const LinearSystem& system) {
+  if (!solver.wants_structure() || solver.analysed(system.pattern)) return;
+  SolveStructure s;
+  s.dim = D;
+  s.dofs = system.dofs;
+  const Index n = std::min(system.dofs.n_nodes(), nodes.X.size());
+  s.coordinates.assign(std::size_t(system.dofs.n_nodes()) * D, 0.0);
+  for (Index i = 0; i < n; ++i)
+    for (int c = 0; c < D; ++c) s.coordinates[std::size_t(i) * D + std::size_t(c)] = nodes.X[i][c] + (current ? nodes.u[i][c] : 0.0);
+  solver.set_structure(std::move(s));
+}
+
+template <int D>
 LinearSolveStatus solve_linear_step(const Nodes<D>& nodes, const BoundaryConditions<D>& bc, LinearSolve& solver,
                                     LinearSystem& system, Timers& timers, bool refactorize) {
+  if (refactorize) give_structure(nodes, true, solver, system);
   if (solve_free_dofs(solver, system, timers, refactorize) != LinearSolveStatus::ok) return LinearSolveStatus::singular;
   const DofMap& dofs = system.dofs;
   for_each_index(dofs.n_dofs(), [&](Index dof) {
@@ -54,6 +69,8 @@ LinearSolveStatus solve_linear_step(const Nodes<D>& nodes, const BoundaryConditi
   return LinearSolveStatus::ok;
 }
 
+template void give_structure<2>(const Nodes<2>&, bool, LinearSolve&, const LinearSystem&);
+template void give_structure<3>(const Nodes<3>&, bool, LinearSolve&, const LinearSystem&);
 template LinearSolveStatus solve_linear_step<2>(const Nodes<2>&, const BoundaryConditions<2>&, LinearSolve&, LinearSystem&, Timers&, bool);
 template LinearSolveStatus solve_linear_step<3>(const Nodes<3>&, const BoundaryConditions<3>&, LinearSolve&, LinearSystem&, Timers&, bool);
 

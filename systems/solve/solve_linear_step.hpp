@@ -17,6 +17,11 @@ enum class LinearSolveStatus { ok, singular };
 // refactorize = false reuses the factorisation of the last call (a tangent frozen for the step).
 LinearSolveStatus solve_free_dofs(LinearSolve& solver, LinearSystem& system, Timers& timers, bool refactorize = true);
 
+// Gives the solver the structure of the equations (SolveStructure: dofs and node coordinates, X + u if `current`)
+// when its back-end wants it and the pattern is new.
+template <int D>
+void give_structure(const Nodes<D>& nodes, bool current, LinearSolve& solver, const LinearSystem& system);
+
 template <int D>
 LinearSolveStatus solve_linear_step(const Nodes<D>& nodes, const BoundaryConditions<D>& bc, LinearSolve& solver,
                                     LinearSystem& system, Timers& timers, bool refactorize = true);

@@ -28,7 +28,8 @@ bool mixed_formulation(Formulation f) { return has_dilatation(f) || has_pressure
 // The mixed tangents are not symmetric (u-phi: seed 000 eqs 40-42; u-p: seed 001 eqs 60-61): CHOLMOD, which
 // reads one triangle, cannot take them.
 LinearSolverKind linear_solver_for(const SceneSpec& scene) {
-  if (!has_body(scene, mixed_formulation)) return scene.solver.linear;
+  // petsc takes the mixed systems too (a Schur-complement fieldsplit, engine/linalg/petsc_solver.cpp).
+  if (!has_body(scene, mixed_formulation) || scene.solver.linear == LinearSolverKind::petsc) return scene.solver.linear;
   const char* element = has_body(scene, has_dilatation) ? "p1p1_uphi" : has_body(scene, has_pressure) ? "es_up or fem_up" : "";
   LOOM_CHECK(!needs_spd(scene.solver.linear), InputError,
              scene.solver.linear_where << ": error: solver.linear: " << linear_solver_key(scene.solver.linear)

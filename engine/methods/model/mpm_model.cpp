@@ -139,11 +139,12 @@ void MpmModelT<D>::set_columns(const BodySpec& body) {
   probe_loc.entity = "probe point";
 }
 
-// UMFPACK for the mixed system and receding contact (unsymmetric, indefinite), the scene's choice otherwise.
+// UMFPACK for the mixed system and receding contact (unsymmetric, indefinite), the scene's choice otherwise (petsc takes
+// both: GMRES, or a Schur-complement fieldsplit).
 template <int D>
 void MpmModelT<D>::choose_linear_solver() {
   const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
-  linear_solver = mixed || unsymmetric ? LinearSolverKind::umfpack : scene.solver.linear;
+  linear_solver = (mixed || unsymmetric) && scene.solver.linear != LinearSolverKind::petsc ? LinearSolverKind::umfpack : scene.solver.linear;
   const char* chosen = linear_solver_key(scene.solver.linear);
   LOOM_CHECK(!(unsymmetric && needs_spd(scene.solver.linear)), InputError,
              scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "

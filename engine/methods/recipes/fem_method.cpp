@@ -28,8 +28,9 @@ namespace loom {
 
 template <int D>
 FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
-    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance, m_.scene.solver.reuse_factor) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance, m_.scene.solver.reuse_factor, m_.scene.solver.petsc_options) {
   ctx_.scene = &scene_;
+  solver_.set_options_where((std::ostringstream() << m_.scene.solver.petsc_options_where).str());
   resolve_probe_groups();
   check_model();
   if (options_.profile) timers_.enable_profile();

@@ -33,8 +33,9 @@
 namespace loom {
 template <int D>
 MpmRunT<D>::MpmRunT(const SceneSpec& scene, const RunOptions& options)
-    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance, m_.scene.solver.reuse_factor) {
+    : m_(scene), scene_(m_.scene), options_(options), solver_(m_.linear_solver, m_.scene.solver.linear_tolerance, m_.scene.solver.reuse_factor, m_.scene.solver.petsc_options) {
   ctx_.scene = &scene_;
+  solver_.set_options_where((std::ostringstream() << m_.scene.solver.petsc_options_where).str());
   if (options_.profile) timers_.enable_profile();
   // A static model must hold the active grid's rigid motions; a point probe must start in the body. (3D: as the 3D
   // fem, a free body shows as a singular tangent, and a probe must start in the grid.)
