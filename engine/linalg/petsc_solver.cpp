@@ -187,6 +187,14 @@ class PetscSolver final : public LinearSolver {
         rebuild_next_ = false;
       }
       kept_now_ = false;
+      if (indefinite(reason) && !mixed() && symmetric_ && !cg_refused_) {
+        // CG met a preconditioner (or matrix) that is not positive definite, as GAMG's Chebyshev smoothing can be on a
+        // symmetric but poorly conditioned tangent (MPM cells with few particles): GMRES needs no definiteness, so the
+        // run goes on with it.
+        cg_refused_ = true;
+        rebuild();
+        reason = krylov_solve(0);
+      }
       if (!checked_options_) {
         checked_options_ = true;
         input_problem_ = unused_options(false);
@@ -212,6 +220,10 @@ class PetscSolver final : public LinearSolver {
  private:
   // KSPSolve from zero within `cap` iterations (0: the configured limit); counts the iterations and, after a set-up,
   // remembers the first solve's count.
+  static bool indefinite(KSPConvergedReason reason) {
+    return reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT;
+  }
+
   KSPConvergedReason krylov_solve(PetscInt cap) {
     LOOM_PETSC_CALL(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, cap > 0 ? std::min(cap, max_iterations_) : max_iterations_));
     LOOM_PETSC_CALL(VecSet(solution_, 0.0));
@@ -337,7 +349,7 @@ class PetscSolver final : public LinearSolver {
   void configure(bool symmetric) {
     symmetric_ = symmetric;
     LOOM_PETSC_CALL(PetscOptionsClear(nullptr));
-    LOOM_PETSC_CALL(PetscOptionsInsertString(nullptr, default_options(symmetric).c_str()));
+    LOOM_PETSC_CALL(PetscOptionsInsertString(nullptr, default_options(symmetric && !cg_refused_).c_str()));
     if (const char* env = std::getenv("PETSC_OPTIONS")) LOOM_PETSC_CALL(PetscOptionsInsertString(nullptr, env));
     LOOM_PETSC_CALL(PetscOptionsInsertString(nullptr, user_options_.c_str()));
     LOOM_PETSC_CALL(KSPSetFromOptions(ksp_));
@@ -410,6 +422,7 @@ class PetscSolver final : public LinearSolver {
   bool configured_ = false, symmetric_ = false;
   bool set_up_ = false, rebuild_next_ = false;  // reuse: a preconditioner exists; rebuild it at the next factorize
   bool kept_now_ = false;                       // the next solve runs on a kept preconditioner
+  bool cg_refused_ = false;                     // CG met an indefinite preconditioner: GMRES from then on
   PetscInt max_iterations_ = 2000;              // the configured -ksp_max_it
   PetscInt iterations_after_set_up_ = -1;
   long long set_ups_ = 0;
