@@ -218,12 +218,12 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
-  // KSPSolve from zero within `cap` iterations (0: the configured limit); counts the iterations and, after a set-up,
-  // remembers the first solve's count.
   static bool indefinite(KSPConvergedReason reason) {
     return reason == KSP_DIVERGED_INDEFINITE_PC || reason == KSP_DIVERGED_INDEFINITE_MAT;
   }
 
+  // KSPSolve from zero within `cap` iterations (0: the configured limit); counts the iterations and, after a set-up,
+  // remembers the first solve's count.
   KSPConvergedReason krylov_solve(PetscInt cap) {
     LOOM_PETSC_CALL(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, cap > 0 ? std::min(cap, max_iterations_) : max_iterations_));
     LOOM_PETSC_CALL(VecSet(solution_, 0.0));
