@@ -274,6 +274,15 @@ LinearSolve::LinearSolve(LinearSolverKind kind, double cg_tolerance, bool reuse_
 
 LinearSolve::~LinearSolve() = default;
 
+namespace {
+
+// A back-end that failed because of the scene's options (petsc: one PETSc refused or never used) is bad input.
+void refuse_bad_options(const LinearSolver& solver, const std::string& where) {
+  LOOM_CHECK(solver.input_problem().empty(), InputError, where << ": error: solver.petsc_options: " << solver.input_problem());
+}
+
+}  // namespace
+
 bool LinearSolve::analyze(const SparsePattern& pattern) {
   if (analysed_version_ == pattern.version) return false;
   solver_->analyze(pattern.matrix);
@@ -305,7 +314,7 @@ bool LinearSolve::factorize_now(const SparsePattern& pattern) {
       min_rcond_ = std::min(min_rcond_, std::isfinite(rcond) ? rcond : 0.0);
       return true;
     }
-    LOOM_CHECK(solver_->input_problem().empty(), InputError, options_where_ << ": error: solver.petsc_options: " << solver_->input_problem());
+    refuse_bad_options(*solver_, options_where_);
     if (kind_ != LinearSolverKind::automatic || std::string(solver_->name()) == "umfpack") {
       min_rcond_ = 0.0;
       const std::string name = solver_->name();
@@ -349,7 +358,7 @@ bool LinearSolve::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     if (!factorize_deferred()) return false;
   }
   if (solver_->solve(b, x)) return true;
-  LOOM_CHECK(solver_->input_problem().empty(), InputError, options_where_ << ": error: solver.petsc_options: " << solver_->input_problem());
+  refuse_bad_options(*solver_, options_where_);
   failure_ = !solver_->failure_reason().empty() ? solver_->failure_reason()
              : std::string(solver_->name()) == "cg"
                  ? "conjugate gradients did not reach solver.linear_tolerance within twice as many iterations as unknowns (the tangent "
