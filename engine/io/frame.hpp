@@ -56,7 +56,7 @@ inline std::uint8_t vtk_cell_type(CellType t) {
     case CellType::quad9: return kVtkBiquadraticQuad;
     case CellType::tet4: return kVtkTetra;
     case CellType::tet10: return kVtkQuadraticTetra;
-    case CellType::stencil3: case CellType::stencil4: return 0;
+    case CellType::stencil3: case CellType::stencil4: case CellType::stencil5: return 0;
   }
   return 0;
 }

@@ -13,9 +13,14 @@ void check_element_dimension(int dimension, Method method, const std::string& el
                                 " is not an element of method mpm in 3D");
     return;
   }
-  if (dimension == 3 && element != "p1" && element != "tet10" && element != "p1p1_uphi")
+  const bool smoothed = element == "es_up" || element == "es_u" || element == "fem_up" || element == "fem_u";
+  if (dimension == 3 && smoothed && method != Method::fem)
+    body.error("element", "element " + element + " on tetrahedra (face-based smoothing) runs with method fem; method " +
+                              method_name(method) + " in 3D takes p1, tet10 or p1p1_uphi");
+  if (dimension == 3 && !smoothed && element != "p1" && element != "tet10" && element != "p1p1_uphi")
     body.error("element", "element " + element + " is two-dimensional; in 3D (scene.dimension = 3) the elements are p1 (linear "
-                          "tetrahedron), tet10 (quadratic tetrahedron) and p1p1_uphi (mixed linear tetrahedron)" +
+                          "tetrahedron), tet10 (quadratic tetrahedron), p1p1_uphi (mixed linear tetrahedron) and the smoothed "
+                          "es_up, es_u, fem_up, fem_u (method fem)" +
                           (element == "tri6" ? std::string(": tri6's counterpart is tet10") : std::string()));
 }
 
@@ -83,8 +88,8 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
                                                    "has no particle inside for the remesh to hold the body by)");
     }
   }
-  for (const char* t : {"wall", "inlet"})
-    if (root.has(t)) root.error(t, std::string("[[") + t + "]] is two-dimensional (scene.dimension = 3)");
+  // Walls are planes in 3D (point, normal or a box of six); inlets are still segments of a 2D boundary.
+  if (root.has("inlet")) root.error("inlet", "[[inlet]] is two-dimensional (scene.dimension = 3)");
   const auto probes = root.array("probe");
   for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k) {
     const ProbeKind kind = s.probes[k].kind;

@@ -34,10 +34,11 @@ void read_probe(SceneSpec& s, const TableReader& t) {
                                                {"pressure", StressComponent::pressure}});
   const bool vector_component = component == "x" || component == "y" || component == "z";
   if (p.kind == ProbeKind::wall_force && component == "normal") {
-    p.component = 2;
+    p.component = 3;  // after x, y, z
   } else if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component) {
     t.error("component", p.kind == ProbeKind::stress       ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
-                         : p.kind == ProbeKind::wall_force ? "a wall_force probe reads component x, y or normal"
+                         : p.kind == ProbeKind::wall_force ? std::string("a wall_force probe reads component x, y") +
+                                                                 (s.scene.dimension == 3 ? ", z" : "") + " or normal"
                                                            : "kind = \"" + kind + "\" reads component x or y");
   }
   auto needs = [&](const char* key) {
@@ -88,8 +89,9 @@ void read_probe(SceneSpec& s, const TableReader& t) {
         const std::string wall = t.string("wall");
         p.wall = find_by_name(s.walls, wall);
         if (p.wall == kNoIndex) t.error("wall", "no [[wall]] named \"" + wall + "\" (known: " + names_of(s.walls) + ")");
-        else if (p.component == 2 && s.walls[std::size_t(p.wall)].planes.size() != 1)
-          t.error("component", "wall \"" + wall + "\" is a box of four planes: read component x or y");
+        else if (p.component == 3 && s.walls[std::size_t(p.wall)].planes.size() != 1)
+          t.error("component", "wall \"" + wall + "\" is a box of " + std::to_string(s.walls[std::size_t(p.wall)].planes.size()) +
+                                   " planes: read component x, y" + (s.scene.dimension == 3 ? ", z" : "") + ", not normal");
       } else if (s.walls.empty()) {
         t.error("kind", "kind = \"" + kind + "\" measures [[wall]]s and the scene has none");
       }

@@ -205,7 +205,7 @@ struct BoundarySpec {
 // that holds it at its first-contact point.
 struct WallSpec {
   std::string name;
-  std::vector<std::pair<Vec2, Vec2>> planes;  // (point, unit normal)
+  std::vector<std::pair<Vec3, Vec3>> planes;  // (point, unit normal); z = 0 in 2D
   Index body = kNoIndex;
   double penalty = 0.0;  // k_N, force per unit length per unit penetration; 0: chosen from the material and mesh
   bool stick = false;

@@ -120,7 +120,8 @@ std::vector<KeySpec> build_schema() {
                   "of quad9 cells (total Lagrangian, Newmark with consistent mass) outside the grid and sharing the grid's nodes along "
                   "a common side; it is refined grid.refinements times like the grid. 3D (method fem): p1 is the linear tetrahedron "
                   "(one point), tet10 the quadratic one (four points, VTK_QUADRATIC_TETRA order), p1p1_uphi the mixed linear "
-                  "tetrahedron (N-check = 1/4, four points).")
+                  "tetrahedron (N-check = 1/4, four points); es_up, es_u face-based smoothed linear tetrahedra (the domain of each "
+                  "face), fem_up, fem_u the same per tetrahedron.")
                   .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u", "quad9", "tet10"}).by_default("p1"));
   s.push_back(key("body[].alpha_stab", K::real,
                   "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "

@@ -12,9 +12,9 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "with the tangent in the Newton matrix. The nodes are those of the current mesh: PFEM particles that reach the wall feel it. "
                   "At most 8 planes in all (a box is four)."));
   s.push_back(key("wall[].name", K::string, "Name wall_force and penetration probes refer to.").require());
-  s.push_back(key("wall[].point", K::vec2, "A point of the wall's line."));
+  s.push_back(key("wall[].point", K::vec2, "A point of the wall's line (3D: plane)."));
   s.push_back(key("wall[].normal", K::vec2, "Normal of the wall, pointing to the side the material occupies (need not be a unit vector)."));
-  s.push_back(key("wall[].box", K::box, "Instead of point and normal: [[xmin, ymin], [xmax, ymax]], four walls that keep the material inside."));
+  s.push_back(key("wall[].box", K::box, "Instead of point and normal: [[xmin, ymin], [xmax, ymax]], four walls that keep the material inside (3D: six)."));
   s.push_back(key("wall[].body", K::string, "The body the wall acts on (default: every body)."));
   s.push_back(key("wall[].contact", K::choice, "Contact law: penalty.").one_of({"penalty"}).by_default("penalty"));
   s.push_back(key("wall[].penalty", K::real,

@@ -12,11 +12,11 @@
 
 namespace loom {
 
-// quad4: MPM background grids only. stencil3/stencil4: the node stencils of integration domains that no
-// single cell owns (edge-based smoothing domains, engine/store/edges.hpp); they are never output as cells.
+// quad4: MPM background grids only. stencil3/stencil4/stencil5: the node stencils of integration domains that
+// no single cell owns (edge- and face-based smoothing domains, engine/store/edges.hpp); never output as cells.
 // quad9: biquadratic quadrilaterals (engine/mesh/quad9_shape.hpp), corners first, then mid-sides and centre.
 // tet4, tet10: linear and quadratic tetrahedra in VTK's node order (systems/assemble/elements/tet4.hpp, tet10.hpp).
-enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9, tet4, tet10 };
+enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9, tet4, tet10, stencil5 };  // new types at the end (checkpoints)
 
 // Element formulation of a cell block: what the assembly computes on its cells.
 //  p1:        linear displacement triangle (tri3, one point);
@@ -26,8 +26,9 @@ enum class CellType { tri3, tri6, quad4, stencil3, stencil4, quad9, tet4, tet10 
 //  p1p1_up:   mixed linear displacement / linear pressure on an MPM background grid, material points as
 //             quadrature points (seed 003 eqs 16-26).
 //  es_up, es_u: edge-based smoothed linear triangles (seed 001 §3): integrated over the smoothing domain of
-//             each edge, mixed u-p (nodal pressure, PPP with alpha_stab) or displacement only;
-//  fem_up, fem_u: the same kernels integrated over each triangle (the seed's FEM-UP and FEM-U);
+//             each edge, mixed u-p (nodal pressure, PPP with alpha_stab) or displacement only; on linear
+//             tetrahedra face-based smoothed (the domain of each face);
+//  fem_up, fem_u: the same kernels integrated over each triangle or tetrahedron (the seed's FEM-UP and FEM-U);
 //  quad9:     biquadratic displacement quadrilateral (quad9, 3 x 3 Gauss points; seed 004's FEM bodies).
 enum class Formulation { p1, tri6, p1p1_uphi, p1p1_up, es_up, es_u, fem_up, fem_u, quad9 };
 
@@ -51,6 +52,7 @@ inline int nodes_per_cell(CellType t) {
   switch (t) {
     case CellType::tri3: case CellType::stencil3: return 3;
     case CellType::quad4: case CellType::stencil4: case CellType::tet4: return 4;
+    case CellType::stencil5: return 5;
     case CellType::tri6: return 6;
     case CellType::quad9: return 9;
     case CellType::tet10: return 10;
@@ -73,7 +75,7 @@ inline bool integrates_on_domains(Formulation f) {
 }
 inline bool edge_smoothed(Formulation f) { return f == Formulation::es_up || f == Formulation::es_u; }
 inline const char* cell_type_name(CellType t) {
-  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4", "quad9", "tet4", "tet10"};
+  constexpr const char* names[] = {"tri3", "tri6", "quad4", "stencil3", "stencil4", "quad9", "tet4", "tet10", "stencil5"};
   return names[int(t)];
 }
 

@@ -11,6 +11,10 @@
 // body has two stores (interior and boundary edges) or one (triangles). Geometry is that of B_n: b~ and V_n
 // are recomputed at each commit and remesh. History (seed 001 §1.1): the elastic left Cauchy-Green tensor
 // b^e of the domain, the only internal variable; J = sqrt(det b^e) because the flow is isochoric.
+//
+// In 3D (Edges<3>) the domains are those of faces (engine/mesh/smoothing_faces.hpp): the sub-tetrahedra (face,
+// centroid) of the one or two tetrahedra that share a face, V^k = sum_e V_e / 4, stencils of 5 nodes inside the
+// body and 4 on its surface; fem_up, fem_u have one domain per tetrahedron. "triangles" then holds tetrahedra.
 #pragma once
 
 #include "engine/core/types.hpp"
@@ -21,8 +25,9 @@ namespace loom {
 
 template <int D>
 struct Edges {
-  // Connectivity, body and colour of the domains (type stencil3 or stencil4): slots 0 and 1 are the edge's
-  // nodes a, b (for a triangle domain: its corners), slots 2 (, 3) the opposite vertices.
+  // Connectivity, body and colour of the domains (type stencil3 or stencil4; 3D: stencil4 or stencil5): slots
+  // 0 and 1 are the edge's nodes a, b (for a triangle domain: its corners), slots 2 (, 3) the opposite vertices;
+  // 3D: slots 0-2 the face's nodes, 3 (, 4) the opposite vertices.
   Cells stencil{CellType::stencil3};
   // true: each domain is one whole triangle (fem_up, fem_u), not the smoothing domain of an edge.
   bool whole_triangles = false;
@@ -33,13 +38,14 @@ struct Edges {
   // Geometrically linear material (linear_elastic): the geometry stays that of the reference mesh, so that
   // strains and forces are those of small-displacement theory over any number of steps.
   bool reference_geometry = false;
-  // The triangles of the owning cell block that make up the domain (2 per domain; the second is kNoIndex
-  // on the boundary and for triangle domains).
+  // The triangles (3D: tetrahedra) of the owning cell block that make up the domain (2 per domain; the second
+  // is kNoIndex on the boundary and for triangle domains).
   Column<Index> triangles;
   Column<double> volume_n;         // V^k in B_n, L^D
   Column<double> grad;             // b~_I(x_n): stride * D per domain, 1/L
   Column<double> pressure_weight;  // N_p^k of each stencil node: 1/2 at a and b for an edge, 1/3 per corner of a triangle
-  Column<Vec<D>> midpoint;         // midpoint of the edge (centroid of a triangle domain) in B_n
+                                   // (3D: 1/3 per node of a face, 1/4 per corner of a tetrahedron)
+  Column<Vec<D>> midpoint;         // midpoint of the edge (centroid of a triangle domain; 3D: of the face or tetrahedron) in B_n
   Column<Mat3> be_n;               // converged elastic left Cauchy-Green tensor b^e_n (history)
   Column<Mat3> be;                 // b^e at the iterate
   Column<Mat3> stress;             // Cauchy stress at the iterate (output, probes)

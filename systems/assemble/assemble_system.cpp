@@ -193,21 +193,27 @@ void assemble_block(const BlockArgs<2>& args, const Cells& cells, bool tangent, 
     case Formulation::p1p1_uphi: assemble_uphi_block(args); break;
     case Formulation::p1p1_up: LOOM_ASSERT(false, "p1p1_up cells live on MPM grids (assemble_grid_system)"); break;
     case Formulation::es_up:
-    case Formulation::fem_up: assemble_triangle_pressure_terms(tangent, materials, nodes, bc, cells, scatter, system); break;
+    case Formulation::fem_up: assemble_simplex_pressure_terms<2>(tangent, materials, nodes, bc, cells, scatter, system); break;
     case Formulation::es_u:
     case Formulation::fem_u: break;  // everything is on the domains
   }
-  if (integrates_on_domains(cells.formulation)) inverted += inverted_triangles(nodes, cells);
+  if (integrates_on_domains(cells.formulation)) inverted += inverted_simplices(nodes, cells);
 }
 
-void assemble_block(const BlockArgs<3>& args, const Cells& cells, bool, const std::vector<BodyMaterial>&, const Nodes<3>&,
-                    const BoundaryConditions<3>&, const CellScatter&, LinearSystem&, std::atomic<Index>&) {
+void assemble_block(const BlockArgs<3>& args, const Cells& cells, bool tangent, const std::vector<BodyMaterial>& materials,
+                    const Nodes<3>& nodes, const BoundaryConditions<3>& bc, const CellScatter& scatter, LinearSystem& system,
+                    std::atomic<Index>& inverted) {
   switch (cells.formulation) {
     case Formulation::p1: assemble_isoparametric_block<4, 1>(args); break;
     case Formulation::tri6: assemble_isoparametric_block<10, 4>(args); break;
     case Formulation::p1p1_uphi: assemble_uphi_block(args); break;
+    case Formulation::es_up:
+    case Formulation::fem_up: assemble_simplex_pressure_terms<3>(tangent, materials, nodes, bc, cells, scatter, system); break;
+    case Formulation::es_u:
+    case Formulation::fem_u: break;  // everything is on the face (tetrahedron) domains
     default: LOOM_ASSERT(false, "formulation without a 3D element (the scene loader refuses it)"); break;
   }
+  if (integrates_on_domains(cells.formulation)) inverted += inverted_simplices(nodes, cells);
 }
 
 }  // namespace
@@ -216,7 +222,7 @@ template <int D>
 AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const std::vector<BodyMaterial>& materials,
                                const Nodes<D>& nodes, const std::vector<Cells>& cells,
                                const BoundaryConditions<D>& bc, std::vector<QuadPoints<D>>& quad,
-                               LinearSystem& system, std::vector<Edges<2>>* domains) {
+                               LinearSystem& system, std::vector<Edges<D>>* domains) {
   const bool tangent = mode == AssemblyMode::residual_and_tangent;
   const Inertia inertia = mode == AssemblyMode::static_residual ? Inertia{} : inertia_of(ctx);
   auto& A = system.pattern.matrix;
@@ -228,10 +234,9 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
     const BlockArgs<D> args{tangent, inertia, materials, nodes, cells[k], bc, quad[k], system.scatter[k], system, inverted};
     assemble_block(args, cells[k], tangent, materials, nodes, bc, system.scatter[k], system, inverted);
   }
-  if constexpr (D == 2)
-    if (domains)
+  if (domains)
     for (std::size_t e = 0; e < domains->size(); ++e)
-        assemble_domain_block(ctx, tangent, materials, nodes, bc, (*domains)[e], system.domain_scatter[e], system, inverted);
+      assemble_domain_block(ctx, tangent, materials, nodes, bc, (*domains)[e], system.domain_scatter[e], system, inverted);
 
   // Nodal terms: lumped inertia and external loads; every node writes only its own entries.
   const DofMap& dofs = system.dofs;
@@ -277,6 +282,6 @@ template AssemblyResult assemble_system<2>(const StepContext&, AssemblyMode, con
                                            LinearSystem&, std::vector<Edges<2>>*);
 template AssemblyResult assemble_system<3>(const StepContext&, AssemblyMode, const std::vector<BodyMaterial>&, const Nodes<3>&,
                                            const std::vector<Cells>&, const BoundaryConditions<3>&, std::vector<QuadPoints<3>>&,
-                                           LinearSystem&, std::vector<Edges<2>>*);
+                                           LinearSystem&, std::vector<Edges<3>>*);
 
 }  // namespace loom

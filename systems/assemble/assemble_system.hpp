@@ -34,6 +34,6 @@ template <int D>
 AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const std::vector<BodyMaterial>& materials,
                                const Nodes<D>& nodes, const std::vector<Cells>& cells,
                                const BoundaryConditions<D>& bc, std::vector<QuadPoints<D>>& quad,
-                               LinearSystem& system, std::vector<Edges<2>>* domains = nullptr);
+                               LinearSystem& system, std::vector<Edges<D>>* domains = nullptr);
 
 }  // namespace loom

@@ -21,8 +21,13 @@
 // projection of x_n. The residual holds f_int - f_ext, so the force the
 // wall exerts on the node is minus these terms. A resting body's nodes settle at g = -p / k_N (p the contact
 // pressure): k_N = 100 E / h keeps g below 1 % of h while p < E.
+//
+// 3D: the same with planes and the boundary faces of the tetrahedra: a face's area vector a_f = (b - a) x (c - a) / 2
+// (outward), each corner's share a third of it (tet10: the corners 0 and each mid-edge node a third, the integrals
+// of the quadratic face's shape functions).
 #pragma once
 
+#include <type_traits>
 #include <vector>
 
 #include "engine/graph/step_context.hpp"
@@ -35,32 +40,41 @@ namespace loom {
 
 // The penalty terms of one node, x its current and x_n its start-of-step position, k = k_N A_i; `held`: it
 // holds `held_point` from an earlier step.
-struct NodeContact {
-  Vec2 r = Vec2::Zero();  // the residual's part (the wall pushes with minus this)
-  Eigen::Matrix2d K = Eigen::Matrix2d::Zero();
+template <int D = 2>
+struct NodeContactT {
+  Vec<D> r = Vec<D>::Zero();  // the residual's part (the wall pushes with minus this)
+  Eigen::Matrix<double, D, D> K = Eigen::Matrix<double, D, D>::Zero();
   double penetration = 0.0;
 };
-NodeContact node_contact(const WallPlane& p, double k, bool stick, bool held, const Vec2& held_point, const Vec2& x_n, const Vec2& x);
+using NodeContact = NodeContactT<2>;
+template <int D>
+NodeContactT<D> node_contact(const WallPlaneT<D>& p, double k, bool stick, bool held, const std::type_identity_t<Vec<D>>& held_point,
+                             const std::type_identity_t<Vec<D>>& x_n, const std::type_identity_t<Vec<D>>& x);
 
 // Where a node not yet held by a stick wall is anchored when it ends the step at x behind it (see above).
-Vec2 first_contact_point(const WallPlane& p, const Vec2& x_n, const Vec2& x);
+template <int D>
+Vec<D> first_contact_point(const WallPlaneT<D>& p, const std::type_identity_t<Vec<D>>& x_n, const std::type_identity_t<Vec<D>>& x);
 
 // Each node's share of the boundary in B_n facing each wall plane, A_i above: its share of each boundary edge
 // (half of it on linear cells; 1/6 to the corners and 2/3 to the mid-node of the three-node edges of tri6 and
 // quad9, the integrals of their edge shape functions) times the edge's length projected on the plane, for the
 // edges whose outward normal points into the wall. Interior nodes get 0.
-void measure_contact_areas(const StepContext& ctx, const Walls& walls, const std::vector<Cells>& cells, Nodes<2>& nodes);
+template <int D>
+void measure_contact_areas(const StepContext& ctx, const WallsT<D>& walls, const std::vector<Cells>& cells, Nodes<D>& nodes);
 
 // Adds the penalty terms of every node behind a wall to the assembled Newton system (residual_full, residual,
 // and with `tangent` the matrix). Each node writes only its own entries.
-void add_wall_contact(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes, bool tangent, LinearSystem& system);
+template <int D>
+void add_wall_contact(const WallsT<D>& walls, const std::vector<Index>& node_body, const Nodes<D>& nodes, bool tangent, LinearSystem& system);
 
 // After a converged step, before commit_step moves u into u_n: nodes behind a stick wall keep (or get) their
 // first-contact point; nodes that left every stick wall forget it.
-void commit_wall_contact(const StepContext& ctx, const Walls& walls, const std::vector<Index>& node_body, Nodes<2>& nodes);
+template <int D>
+void commit_wall_contact(const StepContext& ctx, const WallsT<D>& walls, const std::vector<Index>& node_body, Nodes<D>& nodes);
 
 // The force each wall exerts on the bodies and its largest penetration, at the converged state (u_n). Nodes whose
 // displacement is prescribed in both directions are left out here and in add_wall_contact.
-std::vector<WallResult> wall_results(const Walls& walls, const std::vector<Index>& node_body, const Nodes<2>& nodes, const DofMap& dofs);
+template <int D>
+std::vector<WallResult> wall_results(const WallsT<D>& walls, const std::vector<Index>& node_body, const Nodes<D>& nodes, const DofMap& dofs);
 
 }  // namespace loom

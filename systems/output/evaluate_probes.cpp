@@ -185,7 +185,7 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
                      const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
                      const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                      const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values,
-                     const std::vector<Edges<2>>* domains) {
+                     const std::vector<Edges<D>>* domains) {
   values.assign(plan.probes.size(), 0.0);
   for (std::size_t k = 0; k < plan.probes.size(); ++k) {
     const ProbeSpec& p = plan.probes[k];
@@ -241,7 +241,7 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
         break;
       case ProbeKind::wall_force: {
         const WallResult& w = walls.at(std::size_t(p.wall));
-        values[k] = p.component < 2 ? w.force[p.component] : w.force.dot(w.normal);
+        values[k] = p.component < 3 ? w.force[p.component] : w.force.dot(w.normal);
         break;
       }
       case ProbeKind::penetration: {
@@ -312,6 +312,6 @@ template void evaluate_probes<2>(const StepContext&, const ProbePlan&, const std
 template void evaluate_probes<3>(const StepContext&, const ProbePlan&, const std::vector<BodyMaterial>&, const Nodes<3>&,
                                  const std::vector<Cells>&, const std::vector<QuadPoints<3>>&, const LinearSystem&,
                                  const BoundaryConditions<3>&, int, const RemeshStats&, const std::vector<WallResult>&, std::vector<double>&,
-                                 const std::vector<Edges<2>>*);
+                                 const std::vector<Edges<3>>*);
 
 }  // namespace loom

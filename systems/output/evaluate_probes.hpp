@@ -79,7 +79,7 @@ void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::v
                      const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
                      const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                      const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values,
-                     const std::vector<Edges<2>>* domains = nullptr);
+                     const std::vector<Edges<D>>* domains = nullptr);
 
 double stress_component(const Mat3& sigma, StressComponent c);
 

@@ -27,6 +27,6 @@ struct MeshEnergy {
 template <int D>
 MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes, const std::vector<Cells>& cells,
                        const std::vector<QuadPoints<D>>& quad, const BoundaryConditions<D>& bc,
-                       const std::vector<Edges<2>>* domains = nullptr);
+                       const std::vector<Edges<D>>* domains = nullptr);
 
 }  // namespace loom

@@ -10,11 +10,10 @@ namespace loom {
 
 template <int D>
 void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<D>& nodes, std::vector<QuadPoints<D>>& quad) {
-  // Triangles of seed 001's formulations are integrated on their domains (commit_domains); their one point
+  // Simplices of seed 001's formulations are integrated on their domains (commit_domains); their one point
   // carries the triangle's P1 deformation gradient for output, advanced here while u_n is the old one.
   for (std::size_t b = 0; b < cells.size(); ++b) {
     if (!integrates_on_domains(cells[b].formulation)) continue;
-    LOOM_CHECK(D == 2, RunError, "commit_step: smoothed-domain formulations are two-dimensional");
     QuadPoints<D>& q = quad[b];
     for_each_index(cells[b].size(), [&](Index c) {
       NodalVectors<D + 1, D> du;

@@ -30,6 +30,7 @@ const std::map<std::string, Case>& cases() {
   static const std::map<std::string, Case> c = {
       {"bingham_collapse_es", {6, {}}},
       {"bingham_poiseuille", {3, {}}},
+      {"bingham_poiseuille_3d", {3, {}}},
       {"block_3d", {3, {"body[0].mesh.divisions=[4,4,4]"}}},
       {"bouncing_disk", {6, {"time.end=0.03"}}},
       {"bouncing_disk_mpm_plate", {6, {"time.end=0.03"}}},
@@ -47,6 +48,7 @@ const std::map<std::string, Case>& cases() {
       {"moderate_block_pfem_3d", {6, {}}},
       {"cooks_membrane_3d", {3, {}}},
       {"cooks_membrane_es", {3, {}}},
+      {"cooks_membrane_es_3d", {3, {"body[0].mesh.divisions=[8,8,1]"}}},
       {"cooks_membrane_es_u", {3, {}}},
       {"cooks_membrane_linear", {3, {}}},
       {"cooks_membrane_mpm_dynamic", {6, {}}},
@@ -60,7 +62,9 @@ const std::map<std::string, Case>& cases() {
       {"mms_mpm", {3, {"time.dt=0.3333333333333333", "grid.origin=[-0.5,-0.5]", "grid.size=[2.0,2.0]", "grid.divisions=[32,32]"}}},
       {"mms_mpm_3d", {3, {"time.dt=0.1", "grid.origin=[-0.25,-0.25,-0.125]", "grid.size=[1.5,1.5,0.5]", "grid.divisions=[12,12,4]"}}},
       {"moderate_block_pfem", {6, {}}},
+      {"newtonian_duct_3d", {3, {}}},
       {"plate_with_hole", {3, {}}},
+      {"quarter_block_walls_3d", {3, {}}},
       {"rolling_disk_mpm", {6, {}}},
       {"rolling_disk_on_plate", {6, {}}},
   };

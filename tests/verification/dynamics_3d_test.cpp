@@ -149,3 +149,40 @@ TEST(Dynamics3d, SpinningBoxAngularMomentum) {
 
 }  // namespace
 }  // namespace loom
+
+// alpha-Bossak from the equilibrium a_0 = g on a BCC block of face-smoothed mixed tetrahedra (es_up, Hencky-Perzyna):
+// a rigid translation has no stress, the lumped mass V/4 per corner matches the body force's share, so u_z = -g t^2 / 2
+// at every step to round-off, as for the 2D smoothed element (tests/verification/free_fall_test.cpp).
+namespace loom {
+namespace {
+
+TEST(Dynamics3d, BossakFreeFallOfFaceSmoothedBlockIsExact) {
+  for (const double alpha : {0.0, -0.1, -0.3}) {
+    std::string text = falling_box("es_up", 20);
+    const auto replace = [&](const std::string& a, const std::string& b) {
+      const auto at = text.find(a);
+      ASSERT_NE(at, std::string::npos) << a;
+      text.replace(at, a.size(), b);
+    };
+    replace("integrator = \"newmark\"", "integrator = \"bossak\"\nalpha = " + std::to_string(alpha));
+    replace("model = \"neo_hooke\"", "model = \"hencky_perzyna\"\ntau0 = 1.0\nviscosity = 0.5");
+    replace("element = \"es_up\"\n", "element = \"es_up\"\nalpha_stab = 0.5\n");
+    replace("distortion = 0.2", "lattice = \"bcc\", distortion = 0.2");
+    const SceneSpec scene = testing::scene_from_text(text);
+    RunSummary summary;
+    const auto p = testing::run_for_probes(scene, "free_fall_es_3d", &summary);
+    ASSERT_TRUE(summary.converged) << summary.failure;
+    const auto t = p.column("time"), uz = p.column("uz"), ux = p.column("ux");
+    double worst = 0.0;
+    for (std::size_t s = 0; s < t.size(); ++s) {
+      const double exact = -0.5 * 9.81 * t[s] * t[s];
+      worst = std::max(worst, std::abs(uz[s] - exact));
+      EXPECT_NEAR(uz[s], exact, 1e-10) << "alpha " << alpha << " step " << s;
+      EXPECT_NEAR(ux[s], 0.0, 1e-12) << "alpha " << alpha << " step " << s;
+    }
+    std::printf("[dynamics 3d] Bossak alpha %5.2f free fall, es_up BCC block: worst |u_z - g t^2 / 2| = %.1e\n", alpha, worst);
+  }
+}
+
+}  // namespace
+}  // namespace loom

@@ -49,6 +49,17 @@ inline SceneResult run_scene(const SceneSpec& scene) {
   return r;
 }
 
+// The same for a 3D scene (the nodal displacements are not kept).
+inline SceneResult run_scene_3d(const SceneSpec& scene) {
+  const auto start = std::chrono::steady_clock::now();
+  auto run = testing::make_fem_run<3>(scene);
+  SceneResult r;
+  r.summary = run->run();
+  for (std::size_t k = 0; k < scene.probes.size(); ++k) r.probes[scene.probes[k].name] = run->probe_values()[k];
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
 // The static fem recipe without its graph: the same builders and systems, called in the order of
 // FemRun's graph (apply_boundary_conditions -> newton -> commit), one whole step at a time (no cut-back).
 class SteppedFem {

@@ -72,15 +72,13 @@ FemModelT<D>::FemModelT(const SceneSpec& spec) : scene(spec) {
     else where << scene.file << ": error: body mesh";
     throw InputError(where.str() + ": the generated mesh has inverted or degenerate cells (size or scale too extreme?)");
   }
-  if constexpr (D == 2) {
-    build_domains(nodes, cells, j_projection, edges);
-    for (auto& e : edges)
-      e.reference_geometry = e.size() > 0 && scene.materials[std::size_t(scene.bodies[std::size_t(e.stencil.body[0])].material)].model ==
-                                                  MaterialModel::linear_elastic;
-    set_reference_areas(nodes, cells);
-  }
+  build_domains(nodes, cells, j_projection, edges);
+  for (auto& e : edges)
+    e.reference_geometry = e.size() > 0 && scene.materials[std::size_t(scene.bodies[std::size_t(e.stencil.body[0])].material)].model ==
+                                                MaterialModel::linear_elastic;
+  set_reference_areas(nodes, cells);
   if (nodes.lumped_mass.used()) compute_lumped_mass(cells, quad, materials, nodes);
-  if constexpr (D == 2) walls = build_walls(scene, nodes, cells, node_body);
+  walls = build_walls(scene, nodes, cells, node_body);
   if (dynamic)
     for_each_initial_velocity<D>(
         scene, nodes.size(), [&](Index i) { return node_body[std::size_t(i)]; }, [&](Index i) { return Vec<D>(nodes.X[i]); },

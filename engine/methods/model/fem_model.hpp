@@ -21,8 +21,7 @@
 
 namespace loom {
 
-// D = 2, or 3 for method fem on tetrahedra (then edges and walls stay empty: seed 001's domains and the rigid
-// walls are two-dimensional).
+// D = 2, or 3 for methods fem and pfem on tetrahedra (fem: seed 001's elements on face domains, walls as planes).
 template <int D>
 struct FemModelT {
   // Throws InputError for scene errors that need the mesh (empty regions, degenerate meshes, ...).
@@ -33,11 +32,11 @@ struct FemModelT {
   Points<D> points;  // not used by mesh-based FEM: no column is allocated
   std::vector<Cells> cells;
   std::vector<QuadPoints<D>> quad;
-  std::vector<Edges<2>> edges;   // integration domains of seed 001's formulations (es_*, fem_*), each tied to a cell block
+  std::vector<Edges<D>> edges;   // integration domains of seed 001's formulations (es_*, fem_*), each tied to a cell block
   std::vector<char> j_projection;  // per body: body[].j_projection
   std::vector<BodyMaterial> materials;
   BoundaryConditions<D> bc;
-  Walls walls;  // rigid planes with their penalties ([[wall]]); the contact state is in nodes
+  WallsT<D> walls;  // rigid planes with their penalties ([[wall]]); the contact state is in nodes
   LinearSystem system;
   std::vector<Index> node_body;  // owning body of each node
   BodyRegions regions;           // per body: the physical groups of its mesh file (global corner nodes)

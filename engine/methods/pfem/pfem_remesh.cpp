@@ -112,7 +112,8 @@ PfemSettings pfem_settings_of(const SceneSpec& scene) {
   s.edits = {p.insert_above, p.remove_below, {}};
   for (const WallSpec& w : scene.walls)
     if (w.spacing > 0.0)
-      for (const auto& [point, normal] : w.planes) s.edits.graded.push_back({point, normal, w.spacing, w.body, w.spacing_ramp});
+      for (const auto& [point, normal] : w.planes)
+        s.edits.graded.push_back({Vec2(point.head<2>()), Vec2(normal.head<2>()), w.spacing, w.body, w.spacing_ramp});
   return s;
 }
 

@@ -151,25 +151,22 @@ void FemRunT<D>::build_graph() {
     });
   }
   g.add_system("apply_boundary_conditions", &apply_boundary_conditions<D>, m_.nodes, m_.cells, m_.materials, m_.bc);
-  if constexpr (D == 2)
   if (!m_.walls.empty()) {
     g.name_store(&m_.walls, "walls");
     g.name_store(&m_.node_body, "node_body");
-    g.add_system("measure_contact_areas", &measure_contact_areas, m_.walls, m_.cells, m_.nodes);
+    g.add_system("measure_contact_areas", &measure_contact_areas<D>, m_.walls, m_.cells, m_.nodes);
   }
   g.add_node("newton", {{&m_.bc, &m_.cells, &m_.materials}, {&m_.nodes, &m_.quad, &m_.edges, &m_.system, &status_}}, [this] { newton_node(); },
              "reset_iterate, then assemble -> solve -> update until converged");
-  if constexpr (D == 2)
   if (!m_.walls.empty()) {
-    const auto commit_walls = g.add_system("commit_wall_contact", &commit_wall_contact, m_.walls, m_.node_body, m_.nodes);
+    const auto commit_walls = g.add_system("commit_wall_contact", &commit_wall_contact<D>, m_.walls, m_.node_body, m_.nodes);
     g.run_if(commit_walls, &status_, [this] { return status_.converged; });
   }
   const auto commit = g.add_system("commit", &commit_step<D>, m_.cells, m_.nodes, m_.quad);
   g.run_if(commit, &status_, [this] { return status_.converged; });
-  if constexpr (D == 2)
   if (!m_.edges.empty()) {
     g.name_store(&m_.edges, "edges");
-    const auto commit_edges = g.add_system("commit_domains", &commit_domains, m_.cells, m_.nodes, m_.quad, m_.edges);
+    const auto commit_edges = g.add_system("commit_domains", &commit_domains<D>, m_.cells, m_.nodes, m_.quad, m_.edges);
     g.run_if(commit_edges, &status_, [this] { return status_.converged; });
   }
   const auto probes = g.add_node("probes", {{&m_.nodes, &m_.cells, &m_.quad, &m_.edges, &m_.materials, &m_.system, &m_.bc}, {&probe_writer_}},
@@ -226,8 +223,7 @@ void FemRunT<D>::newton_node() {
 template <int D>
 void FemRunT<D>::probes_node() {
   std::vector<WallResult> walls;
-  if constexpr (D == 2)
-    if (!m_.walls.empty()) walls = wall_results(m_.walls, m_.node_body, m_.nodes, m_.system.dofs);
+  if (!m_.walls.empty()) walls = wall_results(m_.walls, m_.node_body, m_.nodes, m_.system.dofs);
   evaluate_probes(ctx_, probe_plan_, m_.materials, m_.nodes, m_.cells, m_.quad, m_.system, m_.bc, status_.step_iterations,
                   last_remesh_.stats(), walls, probe_values_, &m_.edges);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
@@ -284,10 +280,10 @@ void FemRunT<D>::describe(std::ostream& os) const {
     m_.quad[b].for_each_column(r);
   }
   for (std::size_t e = 0; e < m_.edges.size(); ++e) {
-    const Edges<2>& d = m_.edges[e];
+    const Edges<D>& d = m_.edges[e];
     {
       StoreReport r(os, std::string("edges[") + formulation_name(d.stencil.formulation) + ", " + cell_type_name(d.stencil.type) +
-                            (d.whole_triangles ? ", triangles" : "") + "]",
+                            (d.whole_triangles ? (D == 2 ? ", triangles" : ", tetrahedra") : "") + "]",
                     d.size());
       d.for_each_column(r);
     }
@@ -309,8 +305,7 @@ template <int D>
 void FemRunT<D>::set_equilibrium_acceleration() {
   const Eigen::VectorXd step0_full = m_.system.residual_full, step0 = m_.system.residual;
   assemble_system(ctx_, AssemblyMode::static_residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
-  if constexpr (D == 2)
-    if (!m_.walls.empty()) add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
+  if (!m_.walls.empty()) add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
   const DofMap& dofs = m_.system.dofs;
   // The residual of a tied mid-node (PFEM TRI6, TET10) went to its masters (T^T r), so its mass goes with it: each
   // master's mass is the row sum of T^T M T, m_a + sum over its ties of m_mid / 2 (a uniform g then gives a_0 = g).
@@ -341,11 +336,10 @@ void FemRunT<D>::write_initial_state() {
   ctx_.step = 0, ctx_.t = 0.0, ctx_.dt = scene_.time.dt, ctx_.step_end = true;
   apply_boundary_conditions(ctx_, m_.nodes, m_.cells, m_.materials, m_.bc);
   assemble_system(ctx_, AssemblyMode::residual, m_.materials, m_.nodes, m_.cells, m_.bc, m_.quad, m_.system, &m_.edges);
-  if constexpr (D == 2)
-    if (!m_.walls.empty()) {
-      measure_contact_areas(ctx_, m_.walls, m_.cells, m_.nodes);
-      add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
-    }
+  if (!m_.walls.empty()) {
+    measure_contact_areas(ctx_, m_.walls, m_.cells, m_.nodes);
+    add_wall_contact(m_.walls, m_.node_body, m_.nodes, false, m_.system);
+  }
   if (scene_.time.initial_acceleration == InitialAcceleration::equilibrium && m_.nodes.a_n.used() && m_.nodes.lumped_mass.used())
     set_equilibrium_acceleration();
   status_ = StepStatus{};

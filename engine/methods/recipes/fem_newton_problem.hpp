@@ -37,22 +37,21 @@ class FemNewtonProblemT final : public NonlinearProblem {
  public:
   FemNewtonProblemT(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const std::vector<Cells>& cells,
                    const BoundaryConditions<D>& bc, Nodes<D>& nodes, std::vector<QuadPoints<D>>& quad,
-                   LinearSystem& system, LinearSolve& solver, Timers& timers, std::vector<Edges<2>>* domains = nullptr)
+                   LinearSystem& system, LinearSolve& solver, Timers& timers, std::vector<Edges<D>>* domains = nullptr)
       : ctx_(ctx), materials_(materials), cells_(cells), bc_(bc), nodes_(nodes), quad_(quad), system_(system),
         solver_(solver), timers_(timers), domains_(domains) {}
 
   // Rigid walls act on the nodes of the given bodies (systems/assemble/wall_contact.hpp).
-  void set_walls(const Walls* walls, const std::vector<Index>* node_body) { walls_ = walls, node_body_ = node_body; }
+  void set_walls(const WallsT<D>* walls, const std::vector<Index>* node_body) { walls_ = walls, node_body_ = node_body; }
 
   bool assemble(bool with_tangent) override {
     const auto mode = with_tangent ? AssemblyMode::residual_and_tangent : AssemblyMode::residual;
     fresh_tangent_ = fresh_tangent_ || with_tangent;
     const bool ok = assemble_system<D>(ctx_, mode, materials_, nodes_, cells_, bc_, quad_, system_, domains_).inverted_cells == 0;
-    if constexpr (D == 2)
-      if (walls_ && !walls_->empty()) {
-        ScopedTimer t(timers_, "newton/assemble/walls");
-        add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
-      }
+    if (walls_ && !walls_->empty()) {
+      ScopedTimer t(timers_, "newton/assemble/walls");
+      add_wall_contact(*walls_, *node_body_, nodes_, with_tangent, system_);
+    }
     return ok;
   }
   double residual_norm() const override { return system_.residual.norm(); }
@@ -124,8 +123,8 @@ class FemNewtonProblemT final : public NonlinearProblem {
     return std::sqrt(sum);
   }
 
-  std::vector<Edges<2>>* domains_;
-  const Walls* walls_ = nullptr;
+  std::vector<Edges<D>>* domains_;
+  const WallsT<D>* walls_ = nullptr;
   const std::vector<Index>* node_body_ = nullptr;
   bool fresh_tangent_ = false;  // a tangent was assembled since the last factorisation
 };

@@ -1,6 +1,7 @@
 // The kernel of one integration domain of seed 001 (eqs 36-63): an edge's smoothing domain (stencil of 3 or
-// 4 nodes, smoothed gradients b~) or, for the element-integrated variants, a triangle (b~ = grad N).
-// Local dofs node-major: [u_x, u_y, p] per node (mixed) or [u_x, u_y].
+// 4 nodes, smoothed gradients b~) or, for the element-integrated variants, a triangle (b~ = grad N); in 3D a
+// face's domain (4 or 5 nodes) or a tetrahedron. Local dofs node-major: [u_x, u_y, (u_z,) p] per node (mixed)
+// or [u_x, u_y (, u_z)]. The reading is the same in 2D and 3D; in 2D the out-of-plane row of f is that of I.
 //
 // Kinematics (eq 49, the recommended reading of the spec: the domain's gradients are pushed forward from
 // B_n, which makes the tangent exact): f = I + sum_I du_I (x) b~_I, b^_I = f^-T b~_I, V = det f V_n, and the
@@ -11,7 +12,7 @@
 //   K_uu   = b~ (dP/df) b~ V_n  (first_piola.hpp; = K_mat + K_geo of eqs 62-63)
 //   K_up   = V_n det f b^_I N_p = B~^T m N_p V                      (eq 60)
 //   K_pu   = N_p,a (1 - ln J) / J b^_I V_0                         (eq 61, dJ/du_I = J b^_I)
-// The element terms of R_p (-K_pp,K p - K_stab p, eqs 42 and 48) are triangle_pressure_terms below.
+// The element terms of R_p (-K_pp,K p - K_stab p, eqs 42 and 48) are simplex_pressure_terms below.
 //
 // With material linear_elastic all geometric terms are dropped (seed 001 §4.1, Cook's membrane):
 // eps = eps_n + sym(f - I), P = 2 mu dev eps + p I (mixed) or lambda tr eps I + 2 mu eps, R_p = N_p tr(eps) V_n;
@@ -22,71 +23,21 @@
 #include <type_traits>
 
 #include "systems/assemble/elements/displacement_point.hpp"
+#include "systems/assemble/elements/smoothed_layout.hpp"
 #include "systems/assemble/materials/first_piola.hpp"
 #include "systems/assemble/materials/hencky_perzyna.hpp"
 #include "systems/assemble/materials/linear_elastic.hpp"
 
 namespace loom {
 
-template <int NEN>
-struct SmoothedDomain {
-  NodalVectors<NEN> du;                 // u - u_n at the stencil nodes
-  Eigen::Matrix<double, NEN, 1> p;      // nodal pressures (mixed)
-  NodalVectors<NEN> b;                  // b~_I at x_n, one row per stencil node
-  Eigen::Matrix<double, NEN, 1> Np;     // N_p^k: the pressure interpolation at the domain's point
-  double V_n = 0.0;                     // domain volume in B_n
-  Mat3 be_n = Mat3::Identity();         // history
-  double dt = 1.0;
-};
-
-// What the kernel leaves for the stores: the updated history and the stress for output.
-struct SmoothedDomainState {
-  Mat3 be = Mat3::Identity();
-  Mat3 sigma = Mat3::Zero();
-  double j = 1.0;  // det f
-};
-
-template <int NEN, bool Mixed>
-struct SmoothedLayout {
-  static constexpr int per_node = Mixed ? 3 : 2;
-  static constexpr int size = per_node * NEN;
-  static constexpr int u(int a, int i) { return per_node * a + i; }
-  static constexpr int p(int a) { return 3 * a + 2; }
-  using Vector = Eigen::Matrix<double, size, 1>;
-  using Matrix = Eigen::Matrix<double, size, size>;
-};
-
-namespace detail {
-
-// r_u += V_n P b~, K_uu += V_n b~ A b~ (in-plane rows and columns).
-template <int NEN, bool Mixed>
-void add_first_piola(const SmoothedDomain<NEN>& d, const Mat3& P, const Mat9* A, typename SmoothedLayout<NEN, Mixed>::Vector& r,
-                     typename SmoothedLayout<NEN, Mixed>::Matrix* K) {
-  using L = SmoothedLayout<NEN, Mixed>;
-  const NodalVectors<NEN> f = d.V_n * d.b * P.topLeftCorner<2, 2>().transpose();  // f(I, i) = P_ij b~_Ij
-  for (int a = 0; a < NEN; ++a)
-    for (int i = 0; i < 2; ++i) r[L::u(a, i)] += f(a, i);
-  if (!K) return;
-  for (int i = 0; i < 2; ++i)
-    for (int k = 0; k < 2; ++k) {
-      Eigen::Matrix2d C;  // C_jl = A_ijkl for fixed i, k
-      C << (*A)(ij(i, 0), ij(k, 0)), (*A)(ij(i, 0), ij(k, 1)), (*A)(ij(i, 1), ij(k, 0)), (*A)(ij(i, 1), ij(k, 1));
-      const Eigen::Matrix<double, NEN, NEN> block = d.V_n * d.b * C * d.b.transpose();
-      for (int a = 0; a < NEN; ++a)
-        for (int c = 0; c < NEN; ++c) (*K)(L::u(a, i), L::u(c, k)) += block(a, c);
-    }
-}
-
-}  // namespace detail
-
 // Adds the domain's residual (and tangent if K) to r, K; false if the state does not exist (det f <= 0)
 // or the material cannot be used on smoothed domains (the scene checks refuse that before a run).
-template <int NEN, bool Mixed, class MaterialT>
-bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, typename SmoothedLayout<NEN, Mixed>::Vector& r,
-                     typename SmoothedLayout<NEN, Mixed>::Matrix* K, SmoothedDomainState& out) {
-  using L = SmoothedLayout<NEN, Mixed>;
+template <int NEN, bool Mixed, class MaterialT, int D>
+bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN, D>& d, typename SmoothedLayout<NEN, Mixed, D>::Vector& r,
+                     typename SmoothedLayout<NEN, Mixed, D>::Matrix* K, SmoothedDomainState& out) {
+  using L = SmoothedLayout<NEN, Mixed, D>;
   Mat3 f = Mat3::Identity();
-  f.topLeftCorner<2, 2>() += d.du.transpose() * d.b;
+  f.topLeftCorner<D, D>() += d.du.transpose() * d.b;
   const double det_f = f.determinant();
   if (!(det_f > 0.0)) return false;
   const double p = Mixed ? d.Np.dot(d.p) : 0.0;
@@ -111,17 +62,17 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, ty
       }
       out.sigma += p * Mat3::Identity();
       const double lnJ = std::log(h.J), V0 = d.V_n / J_n;
-      const NodalVectors<NEN> bhat = d.b * f.inverse().topLeftCorner<2, 2>();  // row I: (f^-T b~_I)^T
+      const NodalVectors<NEN, D> bhat = d.b * f.inverse().template topLeftCorner<D, D>();  // row I: (f^-T b~_I)^T
       for (int a = 0; a < NEN; ++a) r[L::p(a)] += d.Np[a] * lnJ / h.J * V0;
       if (K)
         for (int a = 0; a < NEN; ++a)
           for (int c = 0; c < NEN; ++c)
-            for (int i = 0; i < 2; ++i) {
+            for (int i = 0; i < D; ++i) {
               (*K)(L::u(a, i), L::p(c)) += d.V_n * det_f * bhat(a, i) * d.Np[c];
               (*K)(L::p(a), L::u(c, i)) += d.Np[a] * (1.0 - lnJ) / h.J * bhat(c, i) * V0;
             }
     }
-    detail::add_first_piola<NEN, Mixed>(d, P, K ? &A : nullptr, r, K);
+    detail::add_first_piola<NEN, Mixed, D>(d, P, K ? &A : nullptr, r, K);
     return true;
   } else if constexpr (std::is_same_v<MaterialT, LinearElastic>) {
     // The history holds I + 2 eps_n (the small-strain counterpart of b^e), so that the total strain is
@@ -135,10 +86,10 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, ty
       shear_only.stress_tangent(F_total, P, A);
       P += p * Mat3::Identity();
       for (int a = 0; a < NEN; ++a) {
-        r[L::p(a)] += d.Np[a] * (F_total.topLeftCorner<2, 2>().trace() - 2.0) * d.V_n;
+        r[L::p(a)] += d.Np[a] * (F_total.topLeftCorner<D, D>().trace() - double(D)) * d.V_n;
         if (K)
           for (int c = 0; c < NEN; ++c)
-            for (int i = 0; i < 2; ++i) {
+            for (int i = 0; i < D; ++i) {
               (*K)(L::u(a, i), L::p(c)) += d.V_n * d.b(a, i) * d.Np[c];
               (*K)(L::p(a), L::u(c, i)) += d.Np[a] * d.b(c, i) * d.V_n;
             }
@@ -147,24 +98,33 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN>& d, ty
       material.stress_tangent(F_total, P, A);
     }
     out.be = Mat3::Identity() + (F_total + F_total.transpose() - 2.0 * Mat3::Identity()), out.sigma = P, out.j = det_f;
-    detail::add_first_piola<NEN, Mixed>(d, P, K ? &A : nullptr, r, K);
+    detail::add_first_piola<NEN, Mixed, D>(d, P, K ? &A : nullptr, r, K);
     return true;
   } else {
     return false;
   }
 }
 
-// The triangle's share of the pressure equation (eqs 42, 47-48): R_p,a -= (K_pp,K + K_stab)_ab p_b with
-//   K_pp,K,ab = A_0 (1 + d_ab) / (12 K),   K_stab,ab = (alpha_stab / G) (A_0 (1 + d_ab) / 12 - A_0 / 9)
-// (the mass matrix of the pressure and its PPP against the element mean, Dohrmann-Bochev), A_0 the
-// reference area of the triangle (A_e / J_e of the spec). Rows of K_stab sum to zero.
-inline void triangle_pressure_terms(double A0, double inverse_bulk, double alpha_over_G, const Vec3& p, Vec3& r, Mat3* K) {
-  Mat3 M;
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) M(a, b) = A0 * (a == b ? 2.0 : 1.0) / 12.0;
-  const Mat3 Kp = -(inverse_bulk * M + alpha_over_G * (M - Mat3::Constant(A0 / 9.0)));
+// The simplex's share of the pressure equation (eqs 42, 47-48): R_p,a -= (K_pp,K + K_stab)_ab p_b with
+//   triangle:    K_pp,K,ab = A_0 (1 + d_ab) / (12 K),   K_stab,ab = (alpha_stab / G) (A_0 (1 + d_ab) / 12 - A_0 / 9)
+//   tetrahedron: K_pp,K,ab = V_0 (1 + d_ab) / (20 K),   K_stab,ab = (alpha_stab / G) (V_0 (1 + d_ab) / 20 - V_0 / 16)
+// (the mass matrix int N_a N_b of the linear pressure and its PPP against the element mean, Dohrmann-Bochev:
+// int (N_a - 1/(D+1)) (N_b - 1/(D+1)) = M_ab - V_0 / (D+1)^2), V_0 the reference measure of the simplex (A_e / J_e
+// of the spec). Rows of K_stab sum to zero.
+template <int D>
+void simplex_pressure_terms(double V0, double inverse_bulk, double alpha_over_G, const Eigen::Matrix<double, D + 1, 1>& p,
+                            Eigen::Matrix<double, D + 1, 1>& r, Eigen::Matrix<double, D + 1, D + 1>* K) {
+  using Matrix = Eigen::Matrix<double, D + 1, D + 1>;
+  constexpr double mass_denominator = D == 2 ? 12.0 : 20.0, mean_denominator = D == 2 ? 9.0 : 16.0;
+  Matrix M;
+  for (int a = 0; a < D + 1; ++a)
+    for (int b = 0; b < D + 1; ++b) M(a, b) = V0 * (a == b ? 2.0 : 1.0) / mass_denominator;
+  const Matrix Kp = -(inverse_bulk * M + alpha_over_G * (M - Matrix::Constant(V0 / mean_denominator)));
   r += Kp * p;
   if (K) *K += Kp;
+}
+inline void triangle_pressure_terms(double A0, double inverse_bulk, double alpha_over_G, const Vec3& p, Vec3& r, Mat3* K) {
+  simplex_pressure_terms<2>(A0, inverse_bulk, alpha_over_G, p, r, K);
 }
 
 }  // namespace loom
