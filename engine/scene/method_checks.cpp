@@ -27,7 +27,12 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
       if (s.probes[k].kind != ProbeKind::energy) continue;
       for (const BodySpec& b : s.bodies) {
         const MaterialModel model = s.materials[std::size_t(b.material)].model;
-        if (integrates_on_domains(b.element)) continue;  // hencky_perzyna or linear_elastic, as the elements require
+        if (integrates_on_domains(b.element)) {  // the domains' energy is that of b^e: Hencky or Hooke
+          if (model != MaterialModel::hencky_perzyna && model != MaterialModel::linear_elastic)
+            probes[k].error("kind", "energy probes of the smoothed elements (es_up, es_u, fem_up, fem_u) take the materials hencky_perzyna "
+                                    "and linear_elastic (body \"" + b.name + "\")");
+          continue;
+        }
         if (b.element != Formulation::p1 && b.element != Formulation::tri6 && b.element != Formulation::quad9 &&
             b.element != Formulation::p1p1_uphi)
           probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +

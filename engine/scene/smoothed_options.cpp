@@ -38,9 +38,6 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   if (b.material == kNoIndex) return;
   const MaterialSpec& m = s.materials[std::size_t(b.material)];
   if (integrates_on_domains(b.element)) {
-    if (m.model != MaterialModel::hencky_perzyna && m.model != MaterialModel::linear_elastic)
-      t.error("element", std::string(element) + " takes model = \"hencky_perzyna\" (finite strain, with history) or \"linear_elastic\" "
-                                                "(geometrically linear); material \"" + m.name + "\" is another model");
     if (m.model == MaterialModel::linear_elastic && (s.scene.method == Method::es_pfem || b.j_projection))
       t.error(s.scene.method == Method::es_pfem ? "material" : "j_projection",
               "linear_elastic is geometrically linear on a fixed mesh; remeshing and the J projection act on the finite-strain "

@@ -174,6 +174,64 @@ TEST(SmoothedDomain3d, TangentMatchesFiniteDifferencesHencky) {
   EXPECT_GE(plastic, 4);
 }
 
+// Hyperelastic materials on the domains (elements/smoothed_hyperelastic.hpp): b_n as history, F = f sqrt(b_n); mixed
+// with the deviatoric part and the material's own volumetric law. 2D and 3D, u-p and u.
+TEST(SmoothedDomain, TangentMatchesFiniteDifferencesHyperelastic) {
+  std::mt19937 rng(31);
+  const NeoHooke neo{5.0, 2.0};
+  const NeoHookeSplit split{2.0, 1.0 / 8.0};
+  for (int trial = 0; trial < 3; ++trial) {
+    check_tangent<4, true>(neo, random_domain<4>(rng, 0.1), 1e-7);
+    check_tangent<3, false>(neo, random_domain<3>(rng, 0.1), 1e-7);
+    check_tangent<4, true>(split, random_domain<4>(rng, 0.1), 1e-7);
+    check_tangent<4, false>(split, random_domain<4>(rng, 0.1), 1e-7);
+    check_tangent<5, true>(neo, random_domain<5, 3>(rng, 0.1), 1e-7);
+    check_tangent<4, false>(neo, random_domain<4, 3>(rng, 0.1), 1e-7);
+    check_tangent<5, true>(split, random_domain<5, 3>(rng, 0.1), 1e-7);
+    check_tangent<5, false>(split, random_domain<5, 3>(rng, 0.1), 1e-7);
+  }
+}
+
+// The hyperelastic branch against the material itself: with b_n = F_n F_n^T for a non-symmetric F_n (another root than
+// the one the kernel takes), the stress is the Kirchhoff stress tau = P(F) F^T of F = f F_n over J, the node forces
+// V_n (tau f^-T / J_n) b~_I; the mixed pressure residual is N_p (J - 1) V_0 for neo_hooke_split and N_p pi / K V_0 for
+// neo_hooke (pi its mean Cauchy stress).
+TEST(SmoothedDomain, HyperelasticStressIsTheMaterialsAtTheTotalDeformation) {
+  std::mt19937 rng(37);
+  SmoothedDomain<5, 3> d = random_domain<5, 3>(rng, 0.1);
+  Mat3 F_n;
+  F_n << 1.1, 0.2, -0.1, 0.05, 0.9, 0.15, -0.1, 0.1, 1.05;  // not symmetric: another root of the same b_n
+  d.be_n = F_n * F_n.transpose();
+  const Mat3 f = Mat3::Identity() + d.du.transpose() * d.b;
+  const Mat3 F = f * F_n;
+  const double J = F.determinant(), V0 = d.V_n / F_n.determinant();
+  const NeoHooke neo{5.0, 2.0};
+  Mat3 P;
+  ASSERT_TRUE(neo.stress(F, P));
+  const Mat3 tau = P * F.transpose();
+  SmoothedLayout<5, false, 3>::Vector r = SmoothedLayout<5, false, 3>::Vector::Zero();
+  SmoothedDomainState st;
+  ASSERT_TRUE((smoothed_domain<5, false>(neo, d, r, nullptr, st)));
+  EXPECT_LT((st.sigma - tau / J).norm(), 1e-13 * tau.norm());
+  EXPECT_LT((st.be - F * F.transpose()).norm(), 1e-13);
+  // Node forces: V_n (tau f^-T / J_n) b~_I.
+  const Mat3 P_f = tau * f.inverse().transpose() / F_n.determinant();
+  for (int a = 0; a < 5; ++a) {
+    const Vec3 expected = d.V_n * P_f * d.b.row(a).transpose();
+    EXPECT_LT((r.segment<3>(3 * a) - expected).norm(), 1e-13 * (1.0 + expected.norm()));
+  }
+  SmoothedLayout<5, true, 3>::Vector rm = SmoothedLayout<5, true, 3>::Vector::Zero();
+  ASSERT_TRUE((smoothed_domain<5, true>(neo, d, rm, nullptr, st)));
+  const double pi = tau.trace() / (3.0 * J), K = neo.lambda + 2.0 * neo.mu / 3.0, p = d.Np.dot(d.p);
+  for (int a = 0; a < 5; ++a) EXPECT_NEAR(rm[4 * a + 3], d.Np[a] * pi / K * V0, 1e-14);
+  EXPECT_LT((st.sigma - (tau / J - pi * Mat3::Identity() + p * Mat3::Identity())).norm(), 1e-13 * tau.norm());
+  const NeoHookeSplit split{2.0, 1.0 / 8.0};
+  rm.setZero();
+  ASSERT_TRUE((smoothed_domain<5, true>(split, d, rm, nullptr, st)));
+  for (int a = 0; a < 5; ++a) EXPECT_NEAR(rm[4 * a + 3], d.Np[a] * (J - 1.0) * V0, 1e-14);
+  EXPECT_NEAR(st.sigma.trace() / 3.0, p, 1e-13);  // the isochoric part is deviatoric
+}
+
 TEST(SmoothedDomain3d, TangentMatchesFiniteDifferencesSmallStrain) {
   std::mt19937 rng(23);
   const LinearElastic m{4.0, 1.5};

@@ -113,6 +113,11 @@ Eigen::Matrix2d analytic_P(const std::string& model, const Eigen::Matrix2d& F) {
     // F = diag(F_2d, 1): J = det F_2d and F^-T is block diagonal (seed 000 eq 51).
     return mu * F + (lambda * std::log(F.determinant()) - mu) * F.inverse().transpose();
   }
+  if (model == "neo_hooke_split") {  // mu J^(-2/3) (F - F:F / 3 F^-T) + kappa (J - 1) J F^-T with F:F = |F_2d|^2 + 1, kappa = K
+    const double J = F.determinant(), K = lambda + 2.0 * mu / 3.0;
+    const Eigen::Matrix2d FinvT = F.inverse().transpose();
+    return mu * std::pow(J, -2.0 / 3.0) * (F - (F.squaredNorm() + 1.0) / 3.0 * FinvT) + K * (J - 1.0) * J * FinvT;
+  }
   const Eigen::Matrix2d eps = 0.5 * (F + F.transpose()) - Eigen::Matrix2d::Identity();  // eps33 = 0
   return lambda * eps.trace() * Eigen::Matrix2d::Identity() + 2.0 * mu * eps;
 }
@@ -186,7 +191,13 @@ void run_patch(const PatchCase& c) {
     ASSERT_TRUE(nodes.p_n.used());
     const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu)), K = lambda + 2.0 * mu / 3.0;
     const double J = c.F.determinant();
-    const double p_exact = c.model == "linear_elastic" ? K * (c.F.trace() - 2.0) : K * std::log(J) / J;
+    // The mean Cauchy stress (3D, plane strain): Hooke K tr eps, Hencky K ln J / J, neo_hooke tr tau / (3 J) with
+    // tau_33 = lambda ln J, neo_hooke_split kappa (J - 1).
+    const double tr_tau = (analytic_P(c.model, c.F) * c.F.transpose()).trace() + lambda * std::log(J);
+    const double p_exact = c.model == "linear_elastic"   ? K * (c.F.trace() - 2.0)
+                           : c.model == "hencky_perzyna" ? K * std::log(J) / J
+                           : c.model == "neo_hooke"      ? tr_tau / (3.0 * J)
+                                                         : K * (J - 1.0);
     double max_p_error = 0.0;
     for (Index i = 0; i < nodes.size(); ++i) max_p_error = std::max(max_p_error, std::abs(nodes.p_n[i] - p_exact));
     EXPECT_LE(max_p_error, 1e-10 * (1.0 + std::abs(p_exact))) << "p exact " << p_exact;
@@ -254,6 +265,8 @@ TEST(PatchTest, SmoothedFormulationsReproduceAffineFields) {
       run_patch({"linear_elastic", element, small, 1, pattern});
       run_patch({"linear_elastic", element, small, 4, pattern});  // the strain of earlier steps is carried
       run_patch({"hencky_perzyna", element, finite, 4, pattern});
+      run_patch({"neo_hooke", element, finite, 4, pattern});
+      run_patch({"neo_hooke_split", element, finite, 4, pattern});
     }
 }
 

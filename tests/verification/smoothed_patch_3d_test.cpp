@@ -4,7 +4,8 @@
 // nodal pressure p = K tr(eps) (Hooke) or K ln J / J (Hencky), and the face reactions P N A (a uniform P gives the
 // nodal forces P int grad N_I dV whatever the smoothing, and the strips along a face's edges cancel in pairs on
 // the undistorted outline). Small strain over one and four steps (the history carries the earlier strain), and a
-// finite Hencky deformation with every component of F off the identity.
+// finite deformation with every component of F off the identity: Hencky, neo_hooke and neo_hooke_split (the nodal
+// pressure then the material's mean stress tr tau / (3 J), and kappa (J - 1)).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -63,6 +64,11 @@ std::string scene_text(const Case& c) {
 
 Mat3 analytic_P(const std::string& model, const Mat3& F) {
   const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu)), K = lambda + 2.0 * mu / 3.0;
+  const double J = F.determinant();
+  const Mat3 FinvT = F.inverse().transpose();
+  if (model == "neo_hooke") return mu * F + (lambda * std::log(J) - mu) * FinvT;
+  if (model == "neo_hooke_split")  // mu J^(-2/3) (F - F:F / 3 F^-T) + kappa (J - 1) J F^-T, kappa = K
+    return mu * std::pow(J, -2.0 / 3.0) * (F - F.squaredNorm() / 3.0 * FinvT) + K * (J - 1.0) * J * FinvT;
   if (model == "hencky_perzyna") {
     const Mat3 lnV = 0.5 * Mat3(F * F.transpose()).log();
     const Mat3 tau = 2.0 * mu * (lnV - lnV.trace() / 3.0 * Mat3::Identity()) + K * lnV.trace() * Mat3::Identity();
@@ -97,7 +103,12 @@ void run_patch(const Case& c) {
   if (c.element == "es_up" || c.element == "fem_up") {
     const double mu = kE / (2.0 * (1.0 + kNu)), lambda = kE * kNu / ((1.0 + kNu) * (1.0 - 2.0 * kNu)), K = lambda + 2.0 * mu / 3.0;
     const double J = c.F.determinant();
-    const double p_exact = c.model == "linear_elastic" ? K * (c.F.trace() - 3.0) : K * std::log(J) / J;
+    // The mean Cauchy stress: Hooke K tr eps, Hencky K ln J / J, neo_hooke tr tau / (3 J), neo_hooke_split kappa (J - 1).
+    const double tr_tau = (analytic_P(c.model, c.F) * c.F.transpose()).trace();
+    const double p_exact = c.model == "linear_elastic"   ? K * (c.F.trace() - 3.0)
+                           : c.model == "hencky_perzyna" ? K * std::log(J) / J
+                           : c.model == "neo_hooke"      ? tr_tau / (3.0 * J)
+                                                         : K * (J - 1.0);
     for (Index i = 0; i < nodes.size(); ++i) p_error = std::max(p_error, std::abs(nodes.p_n[i] - p_exact));
     EXPECT_LE(p_error, 1e-11 * (1.0 + std::abs(p_exact))) << "p exact " << p_exact;
   }
@@ -126,6 +137,8 @@ TEST(SmoothedPatch3d, AffineFieldsAreExactOnDistortedTetrahedra) {
       run_patch({"linear_elastic", element, lattice, small, 1});
       run_patch({"linear_elastic", element, lattice, small, 4});
       run_patch({"hencky_perzyna", element, lattice, finite, 4});
+      run_patch({"neo_hooke", element, lattice, finite, 4});
+      run_patch({"neo_hooke_split", element, lattice, finite, 4});
     }
 }
 

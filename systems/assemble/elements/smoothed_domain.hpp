@@ -23,6 +23,7 @@
 #include <type_traits>
 
 #include "systems/assemble/elements/displacement_point.hpp"
+#include "systems/assemble/elements/smoothed_hyperelastic.hpp"
 #include "systems/assemble/elements/smoothed_layout.hpp"
 #include "systems/assemble/materials/first_piola.hpp"
 #include "systems/assemble/materials/hencky_perzyna.hpp"
@@ -100,6 +101,8 @@ bool smoothed_domain(const MaterialT& material, const SmoothedDomain<NEN, D>& d,
     out.be = Mat3::Identity() + (F_total + F_total.transpose() - 2.0 * Mat3::Identity()), out.sigma = P, out.j = det_f;
     detail::add_first_piola<NEN, Mixed, D>(d, P, K ? &A : nullptr, r, K);
     return true;
+  } else if constexpr (std::is_same_v<MaterialT, NeoHooke> || std::is_same_v<MaterialT, NeoHookeSplit>) {
+    return hyperelastic_domain<NEN, Mixed>(material, d, f, r, K, out);
   } else {
     return false;
   }
