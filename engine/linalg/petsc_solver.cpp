@@ -132,7 +132,9 @@ class PetscSolver final : public LinearSolver {
     }
     failure_.clear();
     const bool symmetric = is_symmetric(A, layout_.transpose, 1e-12);
-    if (!configured_ || symmetric != symmetric_) {
+    // A mixed system's options do not depend on symmetry, and its fieldsplit must be given its index sets once: a
+    // finite-strain u-p tangent is symmetric at the undeformed start and not after it (configuring twice crashed PETSc).
+    if (!configured_ || (symmetric != symmetric_ && !mixed())) {
       try {
         configure(symmetric);
       } catch (const PetscFailure& f) {  // an option PETSc refuses (-ksp_type cgg): the scene's fault
