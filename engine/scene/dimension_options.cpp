@@ -14,13 +14,13 @@ void check_element_dimension(int dimension, Method method, const std::string& el
     return;
   }
   const bool smoothed = element == "es_up" || element == "es_u" || element == "fem_up" || element == "fem_u";
-  if (dimension == 3 && smoothed && method != Method::fem)
-    body.error("element", "element " + element + " on tetrahedra (face-based smoothing) runs with method fem; method " +
+  if (dimension == 3 && smoothed && method != Method::fem && method != Method::es_pfem)
+    body.error("element", "element " + element + " on tetrahedra (face-based smoothing) runs with methods fem and es_pfem; method " +
                               method_name(method) + " in 3D takes p1, tet10 or p1p1_uphi");
   if (dimension == 3 && !smoothed && element != "p1" && element != "tet10" && element != "p1p1_uphi")
     body.error("element", "element " + element + " is two-dimensional; in 3D (scene.dimension = 3) the elements are p1 (linear "
                           "tetrahedron), tet10 (quadratic tetrahedron), p1p1_uphi (mixed linear tetrahedron) and the smoothed "
-                          "es_up, es_u, fem_up, fem_u (method fem)" +
+                          "es_up, es_u, fem_up, fem_u (methods fem and es_pfem)" +
                           (element == "tri6" ? std::string(": tri6's counterpart is tet10") : std::string()));
 }
 
@@ -62,9 +62,9 @@ void read_mesh_dimension(int dimension, const TableReader& mesh, MeshSpec& m) {
 void check_dimension_support(const SceneSpec& s, const TableReader& root) {
   if (s.scene.dimension != 3) return;
   const auto scene = root.table("scene");
-  if (s.scene.method != Method::fem && s.scene.method != Method::mpm && s.scene.method != Method::pfem)
-    scene.error("method", std::string("scene.dimension = 3 is implemented for methods fem, pfem and mpm; method ") + method_name(s.scene.method) +
-                              " is two-dimensional");
+  if (s.scene.method == Method::mpm_fem)
+    scene.error("method", std::string("scene.dimension = 3 is implemented for methods fem, pfem, es_pfem and mpm; method ") +
+                              method_name(s.scene.method) + " is two-dimensional");
   if (s.scene.method == Method::mpm) {
     const auto grid = root.table("grid");
     if (grid.has("cells")) grid.error("cells", "a 3D grid is linear tetrahedra (tet4): leave cells out");
@@ -77,14 +77,14 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
       if (s.bodies[b].particles.kind != ParticleGenerator::none)
         bodies[b].error("particles", "generated particle sets are two-dimensional; a 3D mpm body samples its tetrahedral mesh (particles_per_cell)");
   }
-  if (s.scene.method == Method::pfem) {
+  if (s.scene.method == Method::pfem || s.scene.method == Method::es_pfem) {
     // A body one cell across has no particle inside: its every cell touches the surface, the remesh has nothing to hold
     // it by (a lattice of at least two cells each way).
     const auto bodies = root.array("body");
     for (std::size_t b = 0; b < bodies.size() && b < s.bodies.size(); ++b) {
       const MeshSpec& m = s.bodies[b].mesh;
       if (m.generator == MeshGenerator::box && std::min({m.nx, m.ny, m.nz}) < 2)
-        bodies[b].table("mesh").error("divisions", "method pfem in 3D needs at least two cells of the lattice along x, y and z (one layer "
+        bodies[b].table("mesh").error("divisions", "methods pfem and es_pfem in 3D need at least two cells of the lattice along x, y and z (one layer "
                                                    "has no particle inside for the remesh to hold the body by)");
     }
   }

@@ -48,7 +48,7 @@ TEST(DomainTransfer, SurvivorsKeepTheirHistoryAndANewEdgeTakesTheNearestWithTheN
     }
   ASSERT_EQ(old_be.size(), 5u);
 
-  const DomainSnapshot snapshot = snapshot_domains(edges, cells);
+  const DomainSnapshot<2> snapshot = snapshot_domains(edges, cells);
   std::vector<Cells> flipped{square({0, 1, 3, 1, 2, 3})};
   const DomainTransferStats stats = transfer_domains(snapshot, nodes, flipped, {0}, edges);
   EXPECT_EQ(stats.kept, 4);

@@ -22,6 +22,8 @@
 // triangle removed by the alpha shape between kept ones); a particle whose kept and matched triangles hold more
 // than M_a is not charged the excess (D_a is clamped at 0); and a patch that nothing gave mass to takes the
 // particles' volume, A_n / J_e, rather than a zero area.
+// In 3D (D = 3) the same with tetrahedra for triangles, volumes for areas, patches joined by shared faces and
+// quarter shares at the corners.
 #pragma once
 
 #include <vector>
@@ -34,7 +36,8 @@ namespace loom {
 
 // Sets cells[b].measure of every triangle flagged in is_new[b] (not those flagged in gap_cells, which the caller
 // handles). nodes.lumped_mass holds each particle's mass before the remesh; density is per body.
-void share_mass_to_new_triangles(const DomainSnapshot& old, const Nodes<2>& nodes, std::vector<Cells>& cells,
+template <int D>
+void share_mass_to_new_triangles(const DomainSnapshot<D>& old, const Nodes<D>& nodes, std::vector<Cells>& cells,
                                  const std::vector<std::vector<char>>& is_new, const std::vector<double>& density,
                                  const std::vector<std::vector<char>>* gap_cells);
 

@@ -61,7 +61,7 @@ struct OldMesh {
   std::vector<Vec2> x;
   std::vector<Mat3> F;
   std::map<std::pair<Index, Index>, Index> first_point;  // (block, cell) -> index of its first point in x
-  DomainSnapshot domains;
+  DomainSnapshot<2> domains;
 };
 
 OldMesh snapshot_old_mesh(const FemModel& m) {
@@ -225,7 +225,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
   const std::vector<Vec2>& old_x = old->x;
   const std::vector<Mat3>& old_F = old->F;
   const auto& first_point = old->first_point;
-  const DomainSnapshot& old_domains = old->domains;
+  const DomainSnapshot<2>& old_domains = old->domains;
   std::vector<Cells> old_cells;
   if (!report.changed) {
     for (std::size_t b = 0; b < n_bodies; ++b) triangles[b] = topo.triangles[b], gap[b].assign(triangles[b].size() / 3, 0);  // keep the cell order

@@ -1,9 +1,11 @@
-// The PFEM remesh stage on tetrahedra (method pfem, scene.dimension = 3; spec 3d-free-surface §3-§4): the 2D stage
-// of pfem_remesh.cpp without particle edits, inflow, walls or smoothing domains. Before each step the particles at
+// The PFEM remesh stage on tetrahedra (methods pfem and es_pfem, scene.dimension = 3; spec 3d-free-surface §3-§5): the
+// 2D stage of pfem_remesh.cpp without particle edits or inflow. Before each step the particles at
 // X_n are remeshed (systems/remesh/remesh_3d.hpp: the previous mesh plays the role of 2D's boundary constraints),
 // tet10 mid-nodes are dropped and re-created on the straight edges with averaged nodal columns, the quadrature
 // history is copied for surviving cells and mapped (CPM / BTM-ISO0/1/2 on a Delaunay_triangulation_3 of the old
-// points) for new ones, and the dofs, sparsity and scatters are rebuilt where the connectivity changed.
+// points) for new ones, es_pfem's face domains are rebuilt with their b^e kept or projected and the new tetrahedra's
+// reference volumes shared out (domain_transfer.hpp), and the dofs, sparsity and scatters are rebuilt where the
+// connectivity changed.
 #include <algorithm>
 #include <map>
 
@@ -12,6 +14,7 @@
 #include "engine/mesh/tet_adjacency.hpp"
 #include "engine/methods/model/build_boundary_conditions.hpp"
 #include "engine/methods/model/build_solid_3d.hpp"
+#include "engine/methods/pfem/domain_transfer.hpp"
 #include "engine/methods/pfem/pfem_remesh.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/assemble/elements/tet10.hpp"
@@ -65,10 +68,12 @@ struct OldPoints {
   std::vector<Mat3> F;
   std::map<Quad, std::pair<Index, Index>> cell_of;  // sorted corners -> (block, cell)
   std::map<std::pair<Index, Index>, Index> first_point;
+  DomainSnapshot<3> domains;  // es_pfem: the domains' history
 };
 
 OldPoints snapshot(const FemModelT<3>& m) {
   OldPoints old;
+  old.domains = snapshot_domains(m.edges, m.cells);
   for (std::size_t k = 0; k < m.cells.size(); ++k) {
     const QuadPoints<3>& q = m.quad[k];
     for (Index c = 0; c < m.cells[k].size(); ++c) {
@@ -84,7 +89,9 @@ OldPoints snapshot(const FemModelT<3>& m) {
 }
 
 // The new cell blocks (m.cells empty) from the bodies' corner tetrahedra; tet10 mid-nodes re-created after the particles.
-void rebuild_cells(const std::vector<std::vector<Index>>& tets, Index n_points, FemModelT<3>& m) {
+// `merged` (per body, per tetrahedron: it fills a gap outside the previous mesh) is gathered per block into gap_cells.
+void rebuild_cells(const std::vector<std::vector<Index>>& tets, const std::vector<std::vector<char>>& merged, Index n_points, FemModelT<3>& m,
+                   std::vector<std::vector<char>>& gap_cells) {
   m.nodes.resize(n_points);
   m.node_body.resize(std::size_t(n_points));
   std::map<std::pair<Index, Index>, Index> mid_of;
@@ -98,6 +105,8 @@ void rebuild_cells(const std::vector<std::vector<Index>>& tets, Index n_points, 
       m.cells.emplace_back(type, element);
       block = &m.cells.back();
     }
+    std::vector<char>& block_gap = gap_cells[std::size_t(block - m.cells.data())];
+    block_gap.insert(block_gap.end(), merged[b].begin(), merged[b].end());
     for (std::size_t t = 0; t + 3 < tets[b].size(); t += 4) {
       const Index* v = &tets[b][t];
       block->nodes.values().insert(block->nodes.values().end(), v, v + 4);
@@ -191,6 +200,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   std::vector<std::vector<Index>> tets(n_bodies);
   std::vector<std::vector<std::array<Index, 3>>> surface(n_bodies);
   std::vector<std::vector<std::array<Index, 4>>> neighbours(n_bodies);
+  std::vector<std::vector<char>> merged(n_bodies);  // per tetrahedron: it fills a gap outside the previous mesh
   bool kept_all = true;
   for (std::size_t b = 0; b < n_bodies; ++b) {
     const auto& pts = topo.points_of_body[b];
@@ -209,6 +219,8 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     for (Index v : r.tets) tets[b].push_back(pts[std::size_t(v)]);
     for (const auto& f : r.surface) surface[b].push_back({pts[std::size_t(f[0])], pts[std::size_t(f[1])], pts[std::size_t(f[2])]});
     neighbours[b] = std::move(r.neighbours);
+    merged[b] = std::move(r.merged_cell);
+    merged[b].resize(r.tets.size() / 4, 0);
     kept_all = kept_all && r.kept_previous;
     report.rejected += r.rejected, report.isolated += r.isolated, report.merged += r.merged, report.triangles += Index(r.tets.size() / 4);
     report.flipped += r.flipped, report.slivers += r.slivers, report.capped += r.capped;
@@ -224,7 +236,10 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     }
     std::sort(before.begin(), before.end()), std::sort(after.begin(), after.end());
     report.changed = before != after;
-    if (!report.changed) tets = topo.tets, surface = topo.surface, neighbours = topo.neighbours;  // the same cells: keep their order
+    if (!report.changed) {  // the same cells: keep their order
+      tets = topo.tets, surface = topo.surface, neighbours = topo.neighbours;
+      for (std::size_t b = 0; b < n_bodies; ++b) merged[b].assign(tets[b].size() / 4, 0);
+    }
   }
   triangulate.stop();
   bool quadratic = false;
@@ -236,12 +251,20 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   const OldPoints old = snapshot(m);
   std::vector<Cells> old_cells;
   old_cells.swap(m.cells);
-  rebuild_cells(tets, topo.n_points, m);
+  std::vector<std::vector<char>> gap_cells(n_bodies);  // per cell block (at most one per body)
+  rebuild_cells(tets, merged, topo.n_points, m, gap_cells);
+  gap_cells.resize(m.cells.size());
   allocate_quad_points(m.cells, m.quad);
   LOOM_CHECK(compute_geometry(m.nodes, m.cells, m.quad) == 0, RunError, "remesh: the new mesh has inverted cells");
   rebuild.stop();
   ScopedTimer transfer(timers, "remesh/map");
   transfer_history(settings, old, old_cells, m, report.map);
+  if (!m.edges.empty()) {
+    // Dynamic runs carry each particle's mass in lumped_mass: the new tetrahedra share it out (mass conserved).
+    std::vector<double> density;
+    for (const BodyMaterial& b : m.materials) density.push_back(b.density);
+    transfer_domains(old.domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr, &gap_cells);
+  }
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
   transfer.stop();
   ScopedTimer numbering(timers, "remesh/rebuild_system");
@@ -266,11 +289,13 @@ void rebuild_system(FemModelT<3>& m, const PfemTopology3d& topo, bool connectivi
     m.system.dofs.build(per_node, std::move(kinds), m.bc.ties);
     std::vector<const Cells*> blocks;
     for (const auto& c : m.cells) blocks.push_back(&c);
+    for (const auto& e : m.edges) blocks.push_back(&e.stencil);
     build_pattern(blocks, m.system.dofs, m.system.pattern);
   }
   m.system.scatter.resize(m.cells.size());
   for (std::size_t k = 0; k < m.cells.size(); ++k) build_scatter(m.cells[k], m.system.dofs, m.system.pattern, m.system.scatter[k]);
-  m.system.domain_scatter.clear();
+  m.system.domain_scatter.resize(m.edges.size());
+  for (std::size_t e = 0; e < m.edges.size(); ++e) build_scatter(m.edges[e].stencil, m.system.dofs, m.system.pattern, m.system.domain_scatter[e]);
   m.system.resize_vectors();
 }
 
