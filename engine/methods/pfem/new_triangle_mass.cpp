@@ -73,8 +73,8 @@ void share_mass_to_new_triangles(const DomainSnapshot<D>& old, const Nodes<D>& n
   const std::size_t n_nodes = std::size_t(nodes.size());
 
   // The triangles that take a share, the ones kept (their mass at each corner), and the new mesh's corner sets.
-  std::vector<Fresh> fresh;
-  std::vector<std::vector<std::size_t>> fresh_at(n_nodes);  // the fresh triangles around each node
+  std::vector<Fresh> fresh, kept_cells;
+  std::vector<std::vector<std::size_t>> fresh_at(n_nodes), kept_at(n_nodes);  // the fresh (kept) triangles around each node
   std::vector<double> kept(n_nodes, 0.0), fresh_area(n_nodes, 0.0);
   std::set<typename DomainSnapshot<D>::Key> present;
   for (std::size_t b = 0; b < cells.size(); ++b)
@@ -85,9 +85,10 @@ void share_mass_to_new_triangles(const DomainSnapshot<D>& old, const Nodes<D>& n
       for (int a = 0; a <= D; ++a) {
         const std::size_t i = std::size_t(c.node(t, a));
         if (is_new[b][std::size_t(t)]) fresh_area[i] += area_n(c, t) / kCorners, fresh_at[i].push_back(fresh.size());
-        else kept[i] += rho(c, t) * c.measure[t] / kCorners;
+        else kept[i] += rho(c, t) * c.measure[t] / kCorners, kept_at[i].push_back(kept_cells.size());
       }
       if (is_new[b][std::size_t(t)]) fresh.push_back({b, t});
+      else kept_cells.push_back({b, t});
     }
 
   // 1. Removed triangles matched to the fresh triangle that holds their centroid.
@@ -111,10 +112,25 @@ void share_mass_to_new_triangles(const DomainSnapshot<D>& old, const Nodes<D>& n
     }
   }
 
-  // 2. What each particle lost besides: D_a = M_a - kept - matched >= 0, at a rate per unit of its new area.
-  std::vector<double> rate(n_nodes, 0.0);
-  for (std::size_t i = 0; i < n_nodes; ++i)
-    if (fresh_area[i] > 0.0) rate[i] = std::max(0.0, nodes.lumped_mass[Index(i)] - kept[i] - matched_at[i]) / fresh_area[i];
+  // 2. What each particle lost besides: D_a = M_a - kept - matched >= 0, at a rate per unit of its new area. A
+  //    particle with no fresh triangle around it (a removed triangle whose neighbours all survived) gives D_a to the
+  //    kept triangles around it instead, in proportion to their areas: they hold a little more material.
+  std::vector<double> rate(n_nodes, 0.0), extra(kept_cells.size(), 0.0);
+  for (std::size_t i = 0; i < n_nodes; ++i) {
+    const double lost = std::max(0.0, nodes.lumped_mass[Index(i)] - kept[i] - matched_at[i]);
+    if (fresh_area[i] > 0.0) {
+      rate[i] = lost / fresh_area[i];
+    } else if (lost > 1e-12 * nodes.lumped_mass[Index(i)] && !kept_at[i].empty()) {  // not round-off
+      double around = 0.0;
+      for (std::size_t k : kept_at[i]) around += area_n(cells[kept_cells[k].block], kept_cells[k].cell);
+      for (std::size_t k : kept_at[i]) extra[k] += lost * area_n(cells[kept_cells[k].block], kept_cells[k].cell) / around;
+    }
+  }
+  for (std::size_t k = 0; k < kept_cells.size(); ++k)
+    if (extra[k] > 0.0) {
+      Cells& c = cells[kept_cells[k].block];
+      c.measure[kept_cells[k].cell] += extra[k] / rho(c, kept_cells[k].cell);
+    }
 
   // 3. Each patch's mass, spread over its triangles.
   const std::vector<std::size_t> patch = patches_of<D>(fresh, cells);

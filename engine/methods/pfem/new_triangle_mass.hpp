@@ -18,8 +18,9 @@
 // energy that an undamped integrator then kept; docs/free_surface.md).
 // Where the body's mass is not kept exactly (docs/free_surface.md §2.7): a removed triangle whose region no fresh
 // triangle at its own corners covers (a cavity of six or more particles re-triangulated) goes through step 2, its
-// mass conserved but its patch no longer tiling; a particle with no fresh triangle loses its D_a (a boundary
-// triangle removed by the alpha shape between kept ones); a particle whose kept and matched triangles hold more
+// mass conserved but its patch no longer tiling; a particle with no fresh triangle around it (a boundary triangle
+// removed by the alpha shape between kept ones) gives its D_a to the kept triangles around it, their density
+// raised, and only a particle left in no triangle at all loses it; a particle whose kept and matched triangles hold more
 // than M_a is not charged the excess (D_a is clamped at 0); and a patch that nothing gave mass to takes the
 // particles' volume, A_n / J_e, rather than a zero area.
 // In 3D (D = 3) the same with tetrahedra for triangles, volumes for areas, patches joined by shared faces and
