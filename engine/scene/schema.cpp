@@ -22,8 +22,9 @@ std::vector<KeySpec> build_schema() {
                   "monolithically to FEM bodies whose quad9 cells share the grid's nodes ([Aulisa 2019] §4).")
                   .one_of({"fem", "pfem", "es_pfem", "mpm", "mpm_fem"}).by_default("fem"));
   s.push_back(key("scene.dimension", K::integer,
-                      "Spatial dimension: 2 (plane strain) or 3 (method fem with elements p1 = linear tetrahedron, tet10, p1p1_uphi = "
-                      "mixed linear tetrahedron; every vector and box corner then takes 3 numbers, expressions may use z).")
+                      "Spatial dimension: 2 (plane strain) or 3 (methods fem, pfem, es_pfem and mpm on tetrahedra: p1 = linear "
+                      "tetrahedron, tet10, p1p1_uphi = mixed linear tetrahedron, the face-smoothed es_up, es_u, fem_up, fem_u; mpm: p1, "
+                      "p1p1_up; every vector and box corner then takes 3 numbers, expressions may use z).")
                       .by_default("2").at_least(2).at_most(3));
   s.push_back(key("scene.units", K::string, "Units of the numbers in the scene, for the reader only; loom is unit-agnostic.").by_default("\"\""));
   s.push_back(key("scene.description", K::string, "Free text.").by_default("\"\""));
@@ -119,10 +120,10 @@ std::vector<KeySpec> build_schema() {
                   "quad9 (method fem): biquadratic displacement quadrilateral, 3 x 3 Gauss points ([Aulisa 2019] §2.2), on the "
                   "quadrilaterals of a generated mesh (rectangle, cooks_membrane; no pattern); method mpm_fem: an FEM body, a rectangle "
                   "of quad9 cells (total Lagrangian, Newmark with consistent mass) outside the grid and sharing the grid's nodes along "
-                  "a common side; it is refined grid.refinements times like the grid. 3D (method fem): p1 is the linear tetrahedron "
+                  "a common side; it is refined grid.refinements times like the grid. 3D: p1 is the linear tetrahedron "
                   "(one point), tet10 the quadratic one (four points, VTK_QUADRATIC_TETRA order), p1p1_uphi the mixed linear "
                   "tetrahedron (N-check = 1/4, four points); es_up, es_u face-based smoothed linear tetrahedra (the domain of each "
-                  "face), fem_up, fem_u the same per tetrahedron.")
+                  "face; methods fem and es_pfem), fem_up, fem_u the same per tetrahedron.")
                   .one_of({"p1", "tri6", "p1p1_uphi", "p1p1_up", "es_up", "es_u", "fem_up", "fem_u", "quad9", "tet10"}).by_default("p1"));
   s.push_back(key("body[].alpha_stab", K::real,
                   "es_up, fem_up (required): dimensionless PPP factor of the pressure, (alpha_stab / G) int (q - q_mean)(p - p_mean) "

@@ -40,6 +40,7 @@ const std::map<std::string, Case>& cases() {
       {"channel_flow_es", {6, {}}},
       {"column_bending_fem", {3, {"body[0].mesh.divisions=[2,2,12]"}}},
       {"column_bending_mpm", {3, {"body[0].mesh.divisions=[2,2,12]", "grid.divisions=[16,4,14]"}}},
+      {"column_slump_es_3d", {6, {}}},
       {"column_twisting_fem", {3, {"body[0].mesh.divisions=[2,2,12]"}}},
       {"column_twisting_mpm", {3, {"body[0].mesh.divisions=[2,2,12]", "grid.divisions=[8,8,14]"}}},
       {"constrained_block_fem", {6, {}}},
