@@ -15,6 +15,7 @@
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/tet_adjacency.hpp"
+#include "engine/mesh/simplex_geometry.hpp"
 #include "engine/mesh/tet_mesh.hpp"
 #include "systems/remesh/delaunay_check.hpp"
 #include "systems/remesh/point_in_tets.hpp"
@@ -379,19 +380,27 @@ void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Inde
     FlipSettings flips;
     flips.threshold = settings.flip_quality;
     std::vector<Index> origin;
+    const std::vector<Index> before = kept.tets;
     const FlipStats s = improve_by_flips(positions, kept.tets, flips, &origin, &kept.neighbours);
     out.flipped = s.flips23 + s.flips32 + s.edge_removals;
-    // A cell the flips made held no material when it is not a previous cell and its centroid lies outside.
+    // A flip re-divides the region of the cells it replaces: a cell it made held no material where it lies (its
+    // centroid) in a replaced cell that held none. (Not wherever its centroid lies outside the previous mesh: the
+    // successors of material cells at a concave surface may poke out of it, and were counted as new material.)
+    std::vector<char> survived(kept.outside.size(), 0);
+    for (Index o : origin)
+      if (o != kNoIndex) survived[std::size_t(o)] = 1;
+    std::vector<const Index*> replaced_outside;
+    for (std::size_t t = 0; t < survived.size(); ++t)
+      if (!survived[t] && kept.outside[t]) replaced_outside.push_back(&before[4 * t]);
+    const auto x = [&](Index i) { return positions[std::size_t(i)]; };
     std::vector<char> flipped_outside(origin.size());
     for (std::size_t t = 0; t < origin.size(); ++t) {
-      const Index* v = &kept.tets[4 * t];
       if (origin[t] != kNoIndex) {
         flipped_outside[t] = kept.outside[std::size_t(origin[t])];
-      } else if (previous && !previous->cells->contains(v)) {
-        const Quad q = canonical_tet({v[0], v[1], v[2], v[3]});
-        flipped_outside[t] = !in_previous->contains_near(
-            (positions[std::size_t(q[0])] + positions[std::size_t(q[1])] + positions[std::size_t(q[2])] + positions[std::size_t(q[3])]) / 4.0, q[0]);
+        continue;
       }
+      const Vec3 centroid = simplex_centroid<3>(&kept.tets[4 * t], x);
+      for (const Index* r : replaced_outside) flipped_outside[t] = flipped_outside[t] || simplex_contains<3>(r, x, centroid, 1e-12);
     }
     kept.outside = std::move(flipped_outside);
   }

@@ -150,16 +150,27 @@ void share_mass_to_new_triangles(const DomainSnapshot<D>& old, const Nodes<D>& n
     if (patch[k] != k) continue;
     tiles[k] = tiles[k] && shared[k] <= 1e-12 * mass[k] && std::abs(reference[k] - mass[k]) <= 1e-9 * mass[k];
   }
+  // A patch that nothing gave mass to (a sliver the remesh added on the surface, all its corners' old cells kept) takes
+  // the particles' volume, A_n / J_e, and that mass from the kept cells around its corners, in proportion to theirs.
+  std::vector<double> taken(kept_cells.size(), 0.0);
   for (std::size_t k = 0; k < fresh.size(); ++k) {
     Cells& c = cells[fresh[k].block];
     const Index t = fresh[k].cell;
     const std::size_t p = patch[k];
-    if (!(mass[p] > 0.0 && area[p] > 0.0)) {  // a patch that nothing gave mass to: the particles' volume, A_n / J_e
+    if (!(mass[p] > 0.0 && area[p] > 0.0)) {
       c.measure[t] = area_n(c, t) / (corner_sum(c, t, [&](Index i) { return nodes.J_node[i]; }) / kCorners);
+      double around = 0.0;
+      for (int a = 0; a <= D; ++a)
+        for (std::size_t j : kept_at[std::size_t(c.node(t, a))]) around += cells[kept_cells[j].block].measure[kept_cells[j].cell];
+      for (int a = 0; a <= D && around > 0.0; ++a)
+        for (std::size_t j : kept_at[std::size_t(c.node(t, a))])
+          taken[j] += c.measure[t] * cells[kept_cells[j].block].measure[kept_cells[j].cell] / around;
       continue;
     }
     c.measure[t] = tiles[p] ? area_0(c, t) * (mass[p] / reference[p]) : area_n(c, t) * (mass[p] / area[p]) / rho(c, t);
   }
+  for (std::size_t j = 0; j < kept_cells.size(); ++j)  // same density: volumes move
+    if (taken[j] > 0.0) cells[kept_cells[j].block].measure[kept_cells[j].cell] -= taken[j];
 }
 
 template void share_mass_to_new_triangles(const DomainSnapshot<2>&, const Nodes<2>&, std::vector<Cells>&, const std::vector<std::vector<char>>&,

@@ -21,8 +21,9 @@
 // mass conserved but its patch no longer tiling; a particle with no fresh triangle around it (a boundary triangle
 // removed by the alpha shape between kept ones) gives its D_a to the kept triangles around it, their density
 // raised, and only a particle left in no triangle at all loses it; a particle whose kept and matched triangles hold more
-// than M_a is not charged the excess (D_a is clamped at 0); and a patch that nothing gave mass to takes the
-// particles' volume, A_n / J_e, rather than a zero area.
+// than M_a is not charged the excess (D_a is clamped at 0). A patch that nothing gave mass to (in 3D a sliver the
+// remesh added on the surface) takes the particles' volume, A_n / J_e, and that mass from the kept triangles around
+// its corners, so that the body's mass stays what it was.
 // In 3D (D = 3) the same with tetrahedra for triangles, volumes for areas, patches joined by shared faces and
 // quarter shares at the corners.
 #pragma once
