@@ -35,6 +35,10 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   const bool vector_component = component == "x" || component == "y" || component == "z";
   if (p.kind == ProbeKind::wall_force && component == "normal") {
     p.component = 3;  // after x, y, z
+  } else if (component == "r") {
+    if (p.kind != ProbeKind::extent || s.scene.dimension != 3)
+      t.error("component", "component r (the distance from the z axis) is read by extent probes in 3D (scene.dimension = 3)");
+    p.component = 4;  // after x, y, z and normal
   } else if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component) {
     t.error("component", p.kind == ProbeKind::stress       ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
                          : p.kind == ProbeKind::wall_force ? std::string("a wall_force probe reads component x, y") +

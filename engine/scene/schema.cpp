@@ -332,8 +332,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));
   s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), or of a stress probe.")
-                  .one_of({"x", "y", "z", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z; an extent probe in 3D also r, the distance from the z axis, sqrt(x^2 + y^2): the spread of a slump), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), or of a stress probe.")
+                  .one_of({"x", "y", "z", "r", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe; of an angular_momentum probe, the point the moments are taken about (default the origin)."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));

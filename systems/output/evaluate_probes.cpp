@@ -208,7 +208,8 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
       case ProbeKind::extent: {
         double e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
         for (Index i : plan.nodes[k]) {
-          const double x = nodes.position_n(i)[p.component];
+          const auto at = nodes.position_n(i);
+          const double x = p.component == 4 ? std::hypot(at[0], at[1]) : at[p.component];  // 4: r, the distance from the z axis
           e = p.max ? std::max(e, x) : std::min(e, x);
         }
         values[k] = e;

@@ -95,7 +95,8 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
         double e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
         for (Index i = 0; i < particles.X.size(); ++i) {
           if (p.body != kNoIndex && particles.body[i] != p.body) continue;  // several bodies: the probe's
-          const double x = particles.position(i)[p.component];
+          const auto at = particles.position(i);
+          const double x = p.component == 4 ? std::hypot(at[0], at[1]) : at[p.component];  // 4: r, the distance from the z axis
           e = p.max ? std::max(e, x) : std::min(e, x);
         }
         values[k] = e;
