@@ -5,6 +5,7 @@
 //   ./make_quarter_solids R_BOTTOM R_TOP HEIGHT H_MAX OUT.msh
 // The committed meshes (README.md beside this file):
 //   ./make_quarter_solids 0.05 0.05 0.1 0.01 quarter_cylinder_10mm.msh     (Pashias' column, 5 cells across)
+//   ./make_quarter_solids 0.1 0.05 0.3 0.025 abrams_quarter_25mm.msh       (the Abrams cone)
 #include <gmsh.h>
 
 #include <cmath>

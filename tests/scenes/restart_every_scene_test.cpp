@@ -68,6 +68,7 @@ const std::map<std::string, Case>& cases() {
       {"quarter_block_walls_3d", {3, {}}},
       {"rolling_disk_mpm", {6, {}}},
       {"rolling_disk_on_plate", {6, {}}},
+      {"slump_flow_es_3d", {6, {"time.end=0.035"}}},
   };
   return c;
 }
