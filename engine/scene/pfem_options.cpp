@@ -45,10 +45,18 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
   s.pfem.flip_quality = remesh.real("flip_quality");
   if (s.scene.dimension == 3) {
     // The 3D remesh keeps the cells inside the previous mesh (systems/remesh/remesh_3d.hpp): no constrained Delaunay to
-    // choose between, no particle edits yet.
-    for (const char* k : {"surface", "insert_above", "remove_below", "spacing"})
+    // choose between; particles are inserted (engine/methods/pfem/particle_insertion_3d.hpp), not removed yet.
+    for (const char* k : {"surface", "remove_below", "spacing"})
       if (remesh.has(k)) remesh.error(k, std::string("remesh.") + k + " is two-dimensional (scene.dimension = 3 keeps the cells inside the "
-                                                                       "previous mesh and adds or removes no particles)");
+                                                                       "previous mesh, inserts particles by remesh.insert_above and removes none)");
+    // A new particle is appended after the others, where a tet10 body keeps its mid-nodes.
+    const auto bodies = root.array("body");
+    for (std::size_t b = 0; b < s.bodies.size() && b < bodies.size() && s.pfem.insert_above > 0.0; ++b)
+      if (s.bodies[b].element == Formulation::tri6)
+        remesh.error("insert_above", "particle insertion in 3D takes linear tetrahedra (p1, p1p1_uphi, es_up, es_u, fem_up, fem_u); body \"" +
+                                         s.bodies[b].name + "\" is tet10");
+    for (std::size_t i = 0; i < s.walls.size() && i < walls.size(); ++i)
+      if (s.walls[i].spacing > 0.0) walls[i].error("spacing", "a wall's own spacing is two-dimensional (scene.dimension = 3 inserts at one spacing per body)");
     // A tetrahedron of a regular lattice has a circumradius about its edge length: below alpha = 1 the alpha test
     // would tear every body apart.
     if (s.pfem.alpha < 1.0) remesh.error("alpha", "in 3D alpha must be >= 1: below, the alpha test tears a regular lattice's cells apart");

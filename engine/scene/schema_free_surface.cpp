@@ -86,7 +86,9 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
   s.push_back(key("remesh.insert_above", K::real,
                   "Particle insertion against separation: before each remesh, a particle is added at the midpoint of every edge of "
                   "the previous mesh longer than insert_above times the spacing, with every nodal value (displacement, velocity, "
-                  "pressure, J, ...) interpolated linearly; 0: off. [Reinold 2021] gives no value; 1.7 is a common choice.")
+                  "pressure, J, ...) interpolated linearly; 0: off. [Reinold 2021] gives no value; 1.7 is a common choice. In 3D "
+                  "(linear tetrahedra) at most one edge per tetrahedron and remesh, the longest first, the spacing the mean edge "
+                  "of the initial mesh; edges at prescribed particles are not split.")
                   .by_default("0").at_least(0));
   s.push_back(key("remesh.remove_below", K::real,
                   "Particle removal against clogging: of two particles joined by an edge shorter than remove_below times the spacing, "

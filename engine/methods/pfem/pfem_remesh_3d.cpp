@@ -1,5 +1,5 @@
 // The PFEM remesh stage on tetrahedra (methods pfem and es_pfem, scene.dimension = 3; spec 3d-free-surface §3-§5): the
-// 2D stage of pfem_remesh.cpp without particle edits or inflow. Before each step the particles at
+// 2D stage of pfem_remesh.cpp with particle insertion (particle_insertion_3d.hpp) and without removal or inflow. Before each step the particles at
 // X_n are remeshed (systems/remesh/remesh_3d.hpp: the previous mesh plays the role of 2D's boundary constraints),
 // tet10 mid-nodes are dropped and re-created on the straight edges with averaged nodal columns, the quadrature
 // history is copied for surviving cells and mapped (CPM / BTM-ISO0/1/2 on a Delaunay_triangulation_3 of the old
@@ -15,6 +15,7 @@
 #include "engine/methods/model/build_boundary_conditions.hpp"
 #include "engine/methods/model/build_solid_3d.hpp"
 #include "engine/methods/pfem/domain_transfer.hpp"
+#include "engine/methods/pfem/particle_insertion_3d.hpp"
 #include "engine/methods/pfem/pfem_remesh.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/assemble/elements/tet10.hpp"
@@ -187,6 +188,7 @@ PfemTopology3d initial_topology(const FemModelT<3>& m) {
   // Dead loads on the particles: linear face functions (mid-nodes do not persist).
   topo.tractions = m.bc.traction_faces;
   for (auto& f : topo.tractions) f.nodes[3] = f.nodes[4] = f.nodes[5] = kNoIndex;
+  topo.spacing = initial_spacing_3d(topo, m.nodes);
   return topo;
 }
 
@@ -194,6 +196,12 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   RemeshReport report;
   const std::size_t n_bodies = m.scene.bodies.size();
   for (std::size_t b = 0; b < n_bodies; ++b) report.area_before += corner_volume(m.nodes, topo.tets[b]);
+
+  // 0. Particles inserted where the previous mesh's edges grew long (its cells split with them).
+  if (settings.edits.insert_above > 0.0) {
+    ScopedTimer edit(timers, "remesh/change_particles");
+    report.inserted = insert_particles_3d(settings.edits.insert_above, topo, m);
+  }
 
   // 1. Every body's new tetrahedra, from its particles at X_n and its previous mesh.
   ScopedTimer triangulate(timers, "remesh/triangulate");
@@ -227,7 +235,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     report.area_after += r.volume;
   }
   // 2. Did the connectivity change?
-  report.changed = !kept_all;
+  report.changed = !kept_all || report.inserted > 0;
   if (report.changed) {
     std::vector<Quad> before, after;
     for (std::size_t b = 0; b < n_bodies; ++b) {
@@ -235,7 +243,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
       for (std::size_t t = 0; t + 3 < tets[b].size(); t += 4) after.push_back(sorted_quad(&tets[b][t]));
     }
     std::sort(before.begin(), before.end()), std::sort(after.begin(), after.end());
-    report.changed = before != after;
+    report.changed = before != after || report.inserted > 0;
     if (!report.changed) {  // the same cells: keep their order
       tets = topo.tets, surface = topo.surface, neighbours = topo.neighbours;
       for (std::size_t b = 0; b < n_bodies; ++b) merged[b].assign(tets[b].size() / 4, 0);
