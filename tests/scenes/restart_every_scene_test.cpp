@@ -150,7 +150,7 @@ TEST_P(RestartScene, StoppedTwiceAndContinuedIsTheWholeRunByteForByte) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, RestartScene, ::testing::ValuesIn(shipped_scenes()),
-                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+                         [](const ::testing::TestParamInfo<std::string>& scene) { return scene.param; });
 
 }  // namespace
 }  // namespace loom::testing

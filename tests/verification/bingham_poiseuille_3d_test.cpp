@@ -100,8 +100,11 @@ TEST(NewtonianDuct3d, CentreVelocityAndFlowRateWithinOnePercent) {
     std::printf("[duct 3d] %d x %d: v_centre %.5f (exact %.5f, %+.3f %%), Q %.6f (exact %.5f, %+.3f %%)\n", n, n, v_centre, v_exact,
                 100 * (v_centre / v_exact - 1), Q, Q_exact, 100 * (Q / Q_exact - 1));
     EXPECT_NEAR(v_centre, v_exact, 1e-2 * v_exact);
-    if (n == 16) EXPECT_NEAR(Q, Q_exact, 1e-2 * Q_exact);
-    if (n == 8) EXPECT_NEAR(Q, Q_exact, 4e-2 * Q_exact);
+    if (n == 16) {
+      EXPECT_NEAR(Q, Q_exact, 1e-2 * Q_exact);
+    } else if (n == 8) {
+      EXPECT_NEAR(Q, Q_exact, 4e-2 * Q_exact);
+    }
   }
 }
 

@@ -105,7 +105,9 @@ void check_compression(const std::string& element, const std::string& scheme, in
   }
   EXPECT_GE(n_changed, kSteps / 3);
   const MapStats& map = run->last_remesh().map;
-  if (scheme == "cpm") EXPECT_EQ(map.interpolated, 0);
+  if (scheme == "cpm") {
+    EXPECT_EQ(map.interpolated, 0);
+  }
   // The whole final state: every node's displacement, every point's F_n, the nodal phi.
   const auto last = verification::homogeneous_compression_3d_exact(kE, kNu, kW, kH, kT, kDepth * kH);
   double max_u = 0.0, max_F = 0.0, max_phi = 0.0;
