@@ -89,24 +89,4 @@ EdgeDomains build_edge_domains(const Cells& triangles, Index n_nodes) {
   return domains;
 }
 
-Edges<2> build_triangle_domains(const Cells& triangles, Index n_nodes) {
-  Edges<2> store;
-  store.stencil = Cells(CellType::stencil3, triangles.formulation);
-  store.whole_triangles = true;
-  const Index n = triangles.size();
-  std::vector<Index>& nodes = store.stencil.nodes.values();
-  nodes.reserve(std::size_t(n) * 3);
-  for (Index t = 0; t < n; ++t) nodes.insert(nodes.end(), triangles.cell_nodes(t), triangles.cell_nodes(t) + 3);
-  store.stencil.body.assign(n, 0);
-  for (Index t = 0; t < n; ++t) store.stencil.body[t] = triangles.body[t];
-  store.resize(n);
-  for (Index t = 0; t < n; ++t) {
-    store.triangles[2 * t] = t;  // the second stays kNoIndex
-    // The mean of the corner pressures: the centroid value of the linear pressure.
-    for (int a = 0; a < 3; ++a) store.pressure_weight[3 * t + a] = 1.0 / 3.0;
-  }
-  colour_cells(store.stencil, n_nodes);
-  return store;
-}
-
 }  // namespace loom

@@ -28,8 +28,4 @@ struct EdgeDomains {
 // repeated node. n_nodes bounds the node indices.
 EdgeDomains build_edge_domains(const Cells& triangles, Index n_nodes);
 
-// One domain per triangle (the element-integrated variants fem_up, fem_u): stencil = the corners in cell
-// order, triangles = {c, kNoIndex}, pressure weights 1/3. Coloured, geometry columns at zero.
-Edges<2> build_triangle_domains(const Cells& triangles, Index n_nodes);
-
 }  // namespace loom

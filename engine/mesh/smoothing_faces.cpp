@@ -94,23 +94,4 @@ FaceDomains build_face_domains(const Cells& tets, Index n_nodes) {
   return domains;
 }
 
-Edges<3> build_tet_domains(const Cells& tets, Index n_nodes) {
-  Edges<3> store;
-  store.stencil = Cells(CellType::stencil4, tets.formulation);
-  store.whole_triangles = true;
-  const Index n = tets.size();
-  std::vector<Index>& nodes = store.stencil.nodes.values();
-  nodes.reserve(std::size_t(n) * 4);
-  for (Index t = 0; t < n; ++t) nodes.insert(nodes.end(), tets.cell_nodes(t), tets.cell_nodes(t) + 4);
-  store.stencil.body.assign(n, 0);
-  for (Index t = 0; t < n; ++t) store.stencil.body[t] = tets.body[t];
-  store.resize(n);
-  for (Index t = 0; t < n; ++t) {
-    store.triangles[2 * t] = t;
-    for (int a = 0; a < 4; ++a) store.pressure_weight[4 * t + a] = 0.25;  // the centroid value of the linear pressure
-  }
-  colour_cells(store.stencil, n_nodes);
-  return store;
-}
-
 }  // namespace loom

@@ -31,8 +31,4 @@ struct FaceDomains {
 // zero. Throws InputError for a face shared by more than two tetrahedra or a tetrahedron with a repeated node.
 FaceDomains build_face_domains(const Cells& tets, Index n_nodes);
 
-// One domain per tetrahedron (the element-integrated variants fem_up, fem_u in 3D): stencil = the corners in
-// cell order, triangles = {c, kNoIndex}, pressure weights 1/4. Coloured, geometry columns at zero.
-Edges<3> build_tet_domains(const Cells& tets, Index n_nodes);
-
 }  // namespace loom

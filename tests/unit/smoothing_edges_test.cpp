@@ -15,6 +15,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/mesh/boundary_edges.hpp"
+#include "engine/mesh/cell_domains.hpp"
 #include "engine/mesh/generators.hpp"
 #include "engine/mesh/smoothing_edges.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
@@ -158,7 +159,7 @@ TEST(SmoothingEdges, HandCheckedTwoTriangleSquare) {
   EXPECT_LE((Eigen::Map<const Grad>(d.boundary.gradient(0), 3, 2) - expected).norm(), 1e-15);
   EXPECT_LE((d.boundary.midpoint[0] - Vec2(0.5, 0.0)).norm(), 1e-15);
 
-  Edges<2> t = build_triangle_domains(m.cells, 4);
+  Edges<2> t = build_cell_domains<2>(m.cells, 4);
   EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, t), 0);
   EXPECT_EQ(t.stencil.nodes.values(), m.cells.nodes.values());
   EXPECT_EQ(t.triangles.values(), (std::vector<Index>{0, kNoIndex, 1, kNoIndex}));
@@ -210,7 +211,7 @@ TEST(SmoothingEdges, VolumesTileTheBody) {
   for (GridPattern p : kPatterns) {
     Mesh m = make_mesh(16, 12, p);  // > kParallelGrain domains: the parallel path
     EdgeDomains d = build_edge_domains(m.cells, m.n_nodes());
-    Edges<2> t = build_triangle_domains(m.cells, m.n_nodes());
+    Edges<2> t = build_cell_domains<2>(m.cells, m.n_nodes());
     EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, d.interior), 0);
     EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, d.boundary), 0);
     EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, t), 0);
@@ -234,7 +235,7 @@ TEST(SmoothingEdges, SmoothedGradientsReproduceLinearFields) {
   for (GridPattern p : kPatterns) {
     Mesh m = make_mesh(16, 12, p);
     EdgeDomains d = build_edge_domains(m.cells, m.n_nodes());
-    Edges<2> t = build_triangle_domains(m.cells, m.n_nodes());
+    Edges<2> t = build_cell_domains<2>(m.cells, m.n_nodes());
     compute_smoothing_geometry(m.nodes, m.cells, d.interior);
     compute_smoothing_geometry(m.nodes, m.cells, d.boundary);
     compute_smoothing_geometry(m.nodes, m.cells, t);
@@ -248,7 +249,7 @@ TEST(SmoothingEdges, ColoursAreRaceFree) {
   for (GridPattern p : kPatterns) {
     const Mesh m = make_mesh(9, 6, p);
     const EdgeDomains d = build_edge_domains(m.cells, m.n_nodes());
-    const Edges<2> t = build_triangle_domains(m.cells, m.n_nodes());
+    const Edges<2> t = build_cell_domains<2>(m.cells, m.n_nodes());
     expect_valid_colouring(d.interior.stencil, m.n_nodes());
     expect_valid_colouring(d.boundary.stencil, m.n_nodes());
     expect_valid_colouring(t.stencil, m.n_nodes());
@@ -284,7 +285,7 @@ TEST(SmoothingEdges, InvertedTrianglesAreCounted) {
   m.cells.nodes.values() = {0, 1, 2, 0, 2, 3};
   m.cells.body.assign(2, 0);
   EdgeDomains d = build_edge_domains(m.cells, 4);
-  Edges<2> t = build_triangle_domains(m.cells, 4);
+  Edges<2> t = build_cell_domains<2>(m.cells, 4);
   EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, d.interior), 1);
   EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, d.boundary), 2);
   EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, t), 1);

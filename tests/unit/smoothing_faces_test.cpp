@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/core/errors.hpp"
+#include "engine/mesh/cell_domains.hpp"
 #include "engine/mesh/smoothing_faces.hpp"
 #include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_generators.hpp"
@@ -112,7 +113,9 @@ TEST(SmoothingFaces, CountsAndStencilOrder) {
           return tet_volume(m.nodes.X[s[0]], m.nodes.X[s[1]], m.nodes.X[s[2]], m.nodes.X[n]);
         };
         EXPECT_LT(side(s[3]), 0.0) << "domain " << k;
-        if (e->stride() == 5) EXPECT_GT(side(s[4]), 0.0) << "domain " << k;
+        if (e->stride() == 5) {
+          EXPECT_GT(side(s[4]), 0.0) << "domain " << k;
+        }
         EXPECT_EQ(e->triangles[2 * k + 1] != kNoIndex, e->stride() == 5);
         double w = 0.0;
         for (int I = 0; I < e->stride(); ++I) w += e->pressure_weight[k * e->stride() + I];
@@ -125,7 +128,7 @@ TEST(SmoothingFaces, CountsAndStencilOrder) {
 TEST(SmoothingFaces, VolumesTileTheBodyAndGradientsAreLinearlyComplete) {
   for (Mesh& m : meshes()) {
     FaceDomains d = build_face_domains(m.cells, m.n_nodes());
-    Edges<3> t = build_tet_domains(m.cells, m.n_nodes());
+    Edges<3> t = build_cell_domains<3>(m.cells, m.n_nodes());
     EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, d.interior), 0);
     EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, d.boundary), 0);
     EXPECT_EQ(compute_smoothing_geometry(m.nodes, m.cells, t), 0);

@@ -21,10 +21,7 @@ namespace {
 
 constexpr double kFx = 2e4, kMu = 10.0, kH = 0.1, kDt = 1e-4, kRow = 1e-3;
 
-double exact_velocity(double y, double tau0) {
-  const double y0 = tau0 / kFx, a = std::max(std::abs(y), y0);
-  return kFx / (2 * kMu) * (kH * kH - a * a) - tau0 / kMu * (kH - a);
-}
+double exact_velocity(double y, double tau0) { return verification::bingham_poiseuille_velocity(y, tau0, kFx, kMu, kH); }
 
 class BinghamPoiseuille : public ::testing::TestWithParam<double> {};
 

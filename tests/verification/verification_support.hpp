@@ -4,6 +4,7 @@
 // cooks_membrane_neo_hooke_test.cpp).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -28,6 +29,14 @@ inline std::string scene_path(const std::string& file) { return std::string(LOOM
 
 inline double relative_error(double value, double reference) {
   return std::abs(value - reference) / std::abs(reference);
+}
+
+// The planar Bingham Poiseuille flow between plates at y = +-H, driven by a body force F per unit volume along x
+// (viscosity mu, yield stress tau0 in simple shear): the plug |y| <= y0 = tau0 / F moves at the velocity of y0, and
+// u(y) = F / (2 mu) (H^2 - a^2) - tau0 / mu (H - a) with a = max(|y|, y0).
+inline double bingham_poiseuille_velocity(double y, double tau0, double F, double mu, double H) {
+  const double y0 = tau0 / F, a = std::max(std::abs(y), y0);
+  return F / (2 * mu) * (H * H - a * a) - tau0 / mu * (H - a);
 }
 
 // The end state of a run: its summary, the probes of the last step by name, the nodal displacements.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "engine/mesh/cell_domains.hpp"
 #include "engine/mesh/smoothing_edges.hpp"
 #include "engine/mesh/smoothing_faces.hpp"
 #include "engine/mesh/tet_mesh.hpp"
@@ -11,22 +12,18 @@
 namespace loom {
 namespace {
 
-// The smoothing domains of a block: interior and boundary edges (faces), or one domain per simplex.
-void smoothing_domains(const Cells& cb, Index n_nodes, std::vector<Edges<2>>& made) {
-  if (edge_smoothed(cb.formulation)) {
-    EdgeDomains d = build_edge_domains(cb, n_nodes);
-    made.push_back(std::move(d.interior)), made.push_back(std::move(d.boundary));
-  } else {
-    made.push_back(build_triangle_domains(cb, n_nodes));
+// The smoothing domains of a block: interior and boundary edges (2D) or faces (3D), or one domain per simplex.
+template <int D>
+void smoothing_domains(const Cells& cb, Index n_nodes, std::vector<Edges<D>>& made) {
+  if (!edge_smoothed(cb.formulation)) {
+    made.push_back(build_cell_domains<D>(cb, n_nodes));
+    return;
   }
-}
-void smoothing_domains(const Cells& cb, Index n_nodes, std::vector<Edges<3>>& made) {
-  if (edge_smoothed(cb.formulation)) {
-    FaceDomains d = build_face_domains(cb, n_nodes);
-    made.push_back(std::move(d.interior)), made.push_back(std::move(d.boundary));
-  } else {
-    made.push_back(build_tet_domains(cb, n_nodes));
-  }
+  auto d = [&] {
+    if constexpr (D == 2) return build_edge_domains(cb, n_nodes);
+    else return build_face_domains(cb, n_nodes);
+  }();
+  made.push_back(std::move(d.interior)), made.push_back(std::move(d.boundary));
 }
 
 double reference_measure(const Nodes<2>& nodes, const Cells& cb, Index c) {
