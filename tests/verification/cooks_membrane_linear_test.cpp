@@ -178,5 +178,19 @@ TEST_F(CooksMembraneLinear, AlternatingIsMoreAccurateThanRightOnEveryMesh) {
   }
 }
 
+// The README's default scene (scenes/cooks_membrane.toml: the same panel with tri6 on 64 x 64) against the converged
+// reference, as its comment and the README state: u_y(C) -0.63 %, u_y(M) -0.34 %, no locking warning, the load carried.
+TEST(CooksMembraneDefaultScene, QuadraticTrianglesAreWithinOnePercentOfTheReference) {
+  const SceneSpec scene = load_scene(verification::scene_path("cooks_membrane.toml"), {"output.every=0"});
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+  const auto probes = testing::run_for_probes(scene, "cooks_membrane_default");
+  const double C = probes.column("uy_C").back(), M = probes.column("uy_M").back();
+  std::printf("[default scene] u_y(C) %.5f (%+.2f %%), u_y(M) %.5f (%+.2f %%)\n", C, 100 * (C / kRefLockingC - 1), M, 100 * (M / kRefLockingM - 1));
+  EXPECT_LT(verification::relative_error(C, kRefLockingC), 0.01);
+  EXPECT_LT(verification::relative_error(M, kRefLockingM), 0.01);
+  EXPECT_LT(C, kRefLockingC);  // from below, as a conforming displacement element
+  EXPECT_NEAR(probes.column("reaction_y").back(), -100.0, 1e-5);
+}
+
 }  // namespace
 }  // namespace loom
