@@ -122,7 +122,14 @@ void print_probes(const loom::SceneSpec& scene, const loom::RunSummary& summary,
   for (std::size_t k = 0; k < values.size(); ++k) {
     char value[32];
     std::snprintf(value, sizeof value, "%.6g", values[k]);
-    std::cout << "  " << scene.probes[k].name << std::string(width - scene.probes[k].name.size() + 2, ' ') << value << "\n";
+    std::cout << "  " << scene.probes[k].name << std::string(width - scene.probes[k].name.size() + 2, ' ') << value;
+    if (const auto& p = scene.probes[k]; p.has_reference) {  // e.g. "(reference 7.771: -0.63 %)"
+      char against[96];
+      if (p.reference != 0.0) std::snprintf(against, sizeof against, "   (reference %.6g: %+.2f %%)", p.reference, 100.0 * (values[k] / p.reference - 1.0));
+      else std::snprintf(against, sizeof against, "   (reference 0: %+.3g)", values[k]);
+      std::cout << against;
+    }
+    std::cout << "\n";
   }
 }
 

@@ -147,6 +147,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       break;
     }
   }
+  if (t.has("reference")) p.has_reference = true, p.reference = t.real("reference");
   if (p.kind != ProbeKind::extent) unused("bound");
   if (p.kind != ProbeKind::remesh) unused("quantity");
   if (p.kind != ProbeKind::energy) unused("energy");

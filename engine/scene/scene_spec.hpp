@@ -240,6 +240,8 @@ struct ProbeSpec {
   RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh
   Index inlet = kNoIndex;     // volume, mass: only the part of the body downstream of this inlet's section
   EnergyPart energy = EnergyPart::total;  // energy
+  bool has_reference = false;  // a reference value (a converged solution, a closed form) printed against the last value
+  double reference = 0.0;
   SourceRef where;
 };
 

@@ -338,6 +338,10 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
   s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));
+  s.push_back(key("probe[].reference", K::real,
+                  "A reference value of the probe (a converged solution, a closed form, a measurement): at the end of a run loom "
+                  "prints the probe's last value against it with their relative difference. Informational: it does not change the "
+                  "run or its exit code."));
   s.push_back(key("probe[].quantity", K::choice,
                   "Of a remesh probe: area_change (area after - area before, summed over bodies), changed (1 if the connectivity changed), "
                   "rejected (triangles removed by the alpha test), isolated (particles in no triangle), merged (remesh.surface = "

@@ -117,8 +117,7 @@ NodeContactT<D> node_contact(const WallPlaneT<D>& p, double k, bool stick, bool 
 template <int D>
 void measure_contact_areas(const StepContext&, const WallsT<D>& walls, const std::vector<Cells>& cells, Nodes<D>& nodes) {
   std::fill(nodes.contact_share.begin(), nodes.contact_share.end(), WallShares::Zero());
-  const auto planes = Index(walls.planes.size());
-  LOOM_ASSERT(planes <= kMaxWallPlanes, planes << " wall planes, at most " << kMaxWallPlanes);
+  LOOM_ASSERT(Index(walls.planes.size()) <= kMaxWallPlanes, walls.planes.size() << " wall planes, at most " << kMaxWallPlanes);
   for (const Cells& cb : cells) measure_block(walls, cb, nodes);
 }
 

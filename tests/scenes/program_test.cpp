@@ -124,6 +124,19 @@ TEST(Program, SetChangesResultsAndAddressesArraysByIndexAndByName) {
   EXPECT_GT(last(fine, "uy_C"), last(base, "uy_C"));  // P1 stiffens less on a finer mesh
 }
 
+// The README's default scene ends with its probes against the references its file gives (probe[].reference).
+TEST(Program, DefaultScenePrintsItsProbesAgainstTheReference) {
+  TempDir dir("program_reference");
+  const Command c = run_loom({"run", kSource + "/scenes/cooks_membrane.toml", "--out", dir.file("out")});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("  uy_C        7.72169   (reference 7.771: -0.63 %)\n"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("  uy_M        7.37983   (reference 7.405: -0.34 %)\n"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("  reaction_y  -100\n"), std::string::npos) << c.out;  // no reference: the value alone
+  // The locking baseline shows what it misses.
+  const Command locked = run_loom({"run", kCook, "--out", dir.file("locked")});
+  EXPECT_NE(locked.out.find("(reference 7.771: -72.66 %)"), std::string::npos) << locked.out;
+}
+
 TEST(Program, OutReplacesTheOutputDirectoryOfTheScene) {
   TempDir dir("program_out");
   const std::string from_scene = dir.file("from_scene"), from_cli = dir.file("from_cli");
