@@ -43,6 +43,7 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
       walls[i].error("spacing", "a spacing at the wall is made by particle insertion, which is off (set remesh.insert_above > 0)");
   s.pfem.keep_delaunay = remesh.boolean("keep_delaunay");
   s.pfem.flip_quality = remesh.real("flip_quality");
+  s.pfem.max_new_material = remesh.real("max_new_material");
   if (s.scene.dimension == 3) {
     // The 3D remesh keeps the cells inside the previous mesh (systems/remesh/remesh_3d.hpp): no constrained Delaunay to
     // choose between; particles are inserted (engine/methods/pfem/particle_insertion_3d.hpp), not removed yet.

@@ -277,6 +277,8 @@ struct PfemSpec {
   // cells are improved by flips (R3.4; 0: none).
   bool keep_delaunay = true;
   double flip_quality = 0.2;
+  // es_pfem, dynamic: the mass that filled gaps (new material), as a fraction of the bodies' mass, above which a run fails.
+  double max_new_material = 0.05;
 };
 
 struct OutputSpec {

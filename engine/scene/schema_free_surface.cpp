@@ -102,6 +102,12 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
   s.push_back(key("remesh.flip_quality", K::real,
                   "3D: tetrahedra whose 3 r_in / R (1 regular, 0 flat) is below this are improved by flips with the particles fixed "
                   "(2-3, 3-2, edge removal; the surface untouched); 0: none.").by_default("0.2").at_least(0).below(1));
+  s.push_back(key("remesh.max_new_material", K::real,
+                  "Method es_pfem, dynamic runs: where two surfaces meet (or a void closes) the remesh fills the gap with new material, "
+                  "mass that no particle carried. Once the mass so added since the start exceeds this fraction of the bodies' mass the "
+                  "run stops as failed (exit 1, the output so far kept): a flow that gains that much is a doubtful answer (a layer a "
+                  "few cells thick folding on itself; refine it or insert particles). Raise it to accept the gain.")
+                  .by_default("0.05").at_least(0));
   s.push_back(key("remesh.spacing", K::real,
                   "Spacing h0 that insert_above and remove_below multiply (0: each body's mean edge length at the start).")
                   .by_default("0").at_least(0));

@@ -98,23 +98,28 @@ std::string two_part_mesh() {
   return os.str();
 }
 
+// A column of paste falling onto a layer of the same body (two parts of one mesh file, written into `dir`).
+std::string merging_scene(const testing::TempDir& dir, const std::string& remesh_extra = "") {
+  testing::write_text(dir.file("two_parts.msh"), two_part_mesh());
+  return "[scene]\nname = \"merging\"\nmethod = \"es_pfem\"\n"
+         "[time]\nintegrator = \"bossak\"\ndt = 1e-3\nsteps = 300\n"
+         "[solver]\nresidual_relative = 1e-8\nmax_cutbacks = 6\n" + kPaste +
+         "[[body]]\nname = \"paste\"\nmaterial = \"paste\"\nelement = \"es_up\"\nalpha_stab = 200.0\n"
+         "mesh = { file = \"" + dir.file("two_parts.msh") + "\" }\n"
+         "[body_force]\ny = -9.81\n"
+         "[[wall]]\nname = \"ground\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nslip = \"stick\"\n"
+         "[remesh]\nsurface = \"constrained\"\nalpha = 1.3\n" + remesh_extra +
+         "[[probe]]\nname = \"top\"\nkind = \"extent\"\ncomponent = \"y\"\n"
+         "[[probe]]\nname = \"mass\"\nkind = \"mass\"\n"
+         "[[probe]]\nname = \"merged\"\nkind = \"remesh\"\nquantity = \"merged\"\n"
+         "[[probe]]\nname = \"crossings\"\nkind = \"remesh\"\nquantity = \"crossings\"\n"
+         "[[probe]]\nname = \"isolated\"\nkind = \"remesh\"\nquantity = \"isolated\"\n"
+         "[output]\nevery = 0\n";
+}
+
 TEST(SurfaceMerging, AColumnFallingOntoALayerJoinsItWithoutCrossingSurfaces) {
   testing::TempDir dir("merging");
-  testing::write_text(dir.file("two_parts.msh"), two_part_mesh());
-  const std::string text = "[scene]\nname = \"merging\"\nmethod = \"es_pfem\"\n"
-                           "[time]\nintegrator = \"bossak\"\ndt = 1e-3\nsteps = 300\n"
-                           "[solver]\nresidual_relative = 1e-8\nmax_cutbacks = 6\n" + kPaste +
-                           "[[body]]\nname = \"paste\"\nmaterial = \"paste\"\nelement = \"es_up\"\nalpha_stab = 200.0\n"
-                           "mesh = { file = \"" + dir.file("two_parts.msh") + "\" }\n"
-                           "[body_force]\ny = -9.81\n"
-                           "[[wall]]\nname = \"ground\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nslip = \"stick\"\n"
-                           "[remesh]\nsurface = \"constrained\"\nalpha = 1.3\n"
-                           "[[probe]]\nname = \"top\"\nkind = \"extent\"\ncomponent = \"y\"\n"
-                           "[[probe]]\nname = \"mass\"\nkind = \"mass\"\n"
-                           "[[probe]]\nname = \"merged\"\nkind = \"remesh\"\nquantity = \"merged\"\n"
-                           "[[probe]]\nname = \"crossings\"\nkind = \"remesh\"\nquantity = \"crossings\"\n"
-                           "[[probe]]\nname = \"isolated\"\nkind = \"remesh\"\nquantity = \"isolated\"\n"
-                           "[output]\nevery = 0\n";
+  const std::string text = merging_scene(dir);
   auto run = testing::make_fem_run(testing::scene_from_text(text), dir.path());
   const RunSummary summary = run->run();
   ASSERT_TRUE(summary.converged) << summary.failure;
@@ -136,6 +141,19 @@ TEST(SurfaceMerging, AColumnFallingOntoALayerJoinsItWithoutCrossingSurfaces) {
   EXPECT_LT(top.back(), 0.16 - 0.035 - 0.02);  // it fell through the gap and sank into the layer
   std::printf("[merging] %g triangles added across gaps; mass %.4f -> %.4f kg/m (+%.2f %%)\n", merges, mass[0], mass.back(),
               100.0 * (mass.back() / mass[0] - 1.0));
+}
+
+// The same fall with remesh.max_new_material = 0.02: the merges add 3.6 % of the mass, so the run stops as failed once
+// they pass 2 %, naming the key, with the probes written up to the last converged step.
+TEST(SurfaceMerging, ARunThatGainsMoreMassThanAllowedFails) {
+  testing::TempDir dir("merging_limit");
+  auto run = testing::make_fem_run(testing::scene_from_text(merging_scene(dir, "max_new_material = 0.02\n")), dir.path());
+  const RunSummary summary = run->run();
+  ASSERT_FALSE(summary.converged);
+  EXPECT_NE(summary.failure.find("remesh.max_new_material = 0.02"), std::string::npos) << summary.failure;
+  const auto mass = testing::read_probes(dir.file("probes.csv")).column("mass");
+  EXPECT_LT(mass.size(), 301u);
+  EXPECT_LT(mass.back() / mass[0] - 1.0, 0.02 + 1e-12);  // the step whose remesh passed the limit is not written
 }
 
 // A block of paste (tau0 = 1000 Pa: rho g H = 1130 Pa at its base, shear stresses below the yield stress) resting on a

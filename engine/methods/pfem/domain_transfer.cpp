@@ -134,7 +134,10 @@ DomainTransferStats transfer_domains(const DomainSnapshot<D>& old, const Nodes<D
   };
   for (std::size_t b = 0; b < cells.size(); ++b)
     for (Index t = 0; !is_new[b].empty() && t < cells[b].size(); ++t)
-      if (is_new[b][std::size_t(t)] && (!density || fills_gap(b, t))) from_nodal_jacobian(cells[b], t);
+      if (is_new[b][std::size_t(t)] && (!density || fills_gap(b, t))) {
+        from_nodal_jacobian(cells[b], t);
+        if (density) stats.new_material_mass += (*density)[std::size_t(cells[b].body[t])] * cells[b].measure[t];
+      }
   if (density) share_mass_to_new_triangles(old, nodes, cells, is_new, *density, gap_cells);  // the mass kept
   // Domains: rebuilt, then their history.
   edges.clear();

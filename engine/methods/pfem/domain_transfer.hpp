@@ -39,6 +39,7 @@ struct DomainSnapshot {
 
 struct DomainTransferStats {
   Index kept = 0, projected = 0;
+  double new_material_mass = 0.0;  // with density: of the cells that filled gaps (material added, not carried)
 };
 
 template <int D>

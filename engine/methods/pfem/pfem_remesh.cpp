@@ -307,7 +307,8 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
     std::vector<double> density;
     for (const BodyMaterial& b : m.materials) density.push_back(b.density);
     gap_cells.resize(m.cells.size());
-    transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr, &gap_cells);
+    report.new_material_mass =
+        transfer_domains(old_domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr, &gap_cells).new_material_mass;
   }
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
 

@@ -271,7 +271,8 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
     // Dynamic runs carry each particle's mass in lumped_mass: the new tetrahedra share it out (mass conserved).
     std::vector<double> density;
     for (const BodyMaterial& b : m.materials) density.push_back(b.density);
-    transfer_domains(old.domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr, &gap_cells);
+    report.new_material_mass =
+        transfer_domains(old.domains, m.nodes, m.cells, m.j_projection, m.edges, m.nodes.lumped_mass.used() ? &density : nullptr, &gap_cells).new_material_mass;
   }
   if (m.nodes.lumped_mass.used()) compute_lumped_mass(m.cells, m.quad, m.materials, m.nodes);
   transfer.stop();

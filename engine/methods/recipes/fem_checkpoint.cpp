@@ -38,6 +38,7 @@ void FemRunT<D>::write_checkpoint(int step) {
   w.value("domain_blocks", Index(m_.edges.size()));
   for (std::size_t k = 0; k < m_.edges.size(); ++k) w.store("domains/" + std::to_string(k), m_.edges[k]);
   if (pfem_) write_topology(w, topology_, m_);
+  if (new_material_mass_ > 0.0) w.value("remesh/new_material_mass", new_material_mass_);  // absent: none (older checkpoints)
   store_checkpoint(w, options_, step);
 }
 
@@ -87,6 +88,7 @@ CheckpointHeader FemRunT<D>::restore_checkpoint(const CheckpointReader& r) {
   }
   if (pfem_) {
     restore_topology(r, topology_, m_, particles_change());
+    new_material_mass_ = r.has("remesh/new_material_mass") ? r.value<double>("remesh/new_material_mass") : 0.0;
     rebuild_system(m_, topology_, /*connectivity_changed=*/true);
     probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
   }

@@ -181,10 +181,28 @@ void FemRunT<D>::build_graph() {
 template <int D>
 void FemRunT<D>::remesh_node() {
   last_remesh_ = remesh_model(pfem_settings_, ctx_.t - ctx_.dt, topology_, m_, timers_);
+  if (last_remesh_.new_material_mass > 0.0) {
+    new_material_mass_ += last_remesh_.new_material_mass;
+    check_new_material();
+  }
   if (last_remesh_.changed) {
     probe_plan_ = plan_probes(scene_, m_.nodes, m_.cells, m_.node_body);
     last_change_ = last_remesh_, last_change_step_ = ctx_.step;  // a cut-back's retry remeshes the changed mesh again
   }
+}
+
+// A dynamic es_pfem run carries its mass on the particles; only gaps that a remesh filled add to it. Past
+// remesh.max_new_material of the bodies' mass the answer is doubtful: the run fails rather than exit 0 with it.
+template <int D>
+void FemRunT<D>::check_new_material() const {
+  double mass = 0.0;
+  for (Index i = 0; i < m_.nodes.size(); ++i) mass += m_.nodes.lumped_mass[i];
+  const double limit = scene_.pfem.max_new_material;
+  LOOM_CHECK(!(new_material_mass_ > limit * mass), RunError,
+             "remesh: the gaps filled where surfaces met (or voids closed) have added " << new_material_mass_ << " kg since the start, "
+                 << 100.0 * new_material_mass_ / mass << " % of the bodies' mass (" << mass << " kg), above remesh.max_new_material = " << limit
+                 << ": mass that no particle carried, a doubtful answer (a layer a few cells thick folding onto itself). Refine the mesh "
+                    "where the flow thins, insert particles (remesh.insert_above), or raise remesh.max_new_material to accept it");
 }
 
 template <int D>

@@ -88,6 +88,8 @@ class FemRunT final : public MethodRun {
   RemeshReport last_remesh_;
   RemeshReport last_change_;   // the last remesh that changed the connectivity, at step last_change_step_
   int last_change_step_ = -1;
+  double new_material_mass_ = 0.0;  // added by the remeshes where gaps were filled, since the start (remesh.max_new_material)
+  void check_new_material() const;
 
   // Per-run workspace
   LinearSolve solver_;
