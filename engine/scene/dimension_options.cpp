@@ -88,8 +88,13 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
                                                    "has no particle inside for the remesh to hold the body by)");
     }
   }
-  // Walls are planes in 3D (point, normal or a box of six); inlets are still segments of a 2D boundary.
-  if (root.has("inlet")) root.error("inlet", "[[inlet]] is two-dimensional (scene.dimension = 3)");
+  // Walls are planes in 3D (point, normal or a box of six); inlets discs. A new layer's particles are appended after
+  // the others, where a tet10 body keeps its mid-nodes.
+  const auto inlets = root.array("inlet");
+  for (std::size_t k = 0; k < s.inlets.size() && k < inlets.size(); ++k)
+    if (s.bodies[std::size_t(s.inlets[k].body)].element == Formulation::tri6)
+      inlets[k].error("body", "inflow in 3D takes linear tetrahedra (p1, p1p1_uphi, es_up, es_u, fem_up, fem_u); body \"" +
+                                  s.bodies[std::size_t(s.inlets[k].body)].name + "\" is tet10");
   const auto probes = root.array("probe");
   for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k) {
     const ProbeKind kind = s.probes[k].kind;

@@ -5,6 +5,25 @@
 #include "engine/scene/loader_support.hpp"
 
 namespace loom {
+namespace {
+
+// A 3D inlet: the disc (centre, radius) normal to the velocity, moving at section_velocity.
+void read_disc(InletSpec& in, const TableReader& t) {
+  for (const char* k : {"from", "to"})
+    if (t.has(k)) t.error(k, std::string(k) + " is a key of a 2D inlet (a segment); a 3D inlet is a disc: centre, radius");
+  if (t.has("from") || t.has("to")) return;
+  if (!t.has("radius")) t.error("", "missing key radius (a 3D inlet is a disc: centre, radius)");
+  in.centre = Vec3(t.component("centre", 0), t.component("centre", 1), t.component("centre", 2));
+  in.radius = t.real("radius");
+  in.velocity_z = t.component("velocity", 2);
+  in.section_velocity = Vec3(t.component("section_velocity", 0), t.component("section_velocity", 1), t.component("section_velocity", 2));
+  const Vec3 v(in.velocity.x(), in.velocity.y(), in.velocity_z);
+  if (t.has("velocity") && !(v.norm() > 0.0)) t.error("velocity", "the velocity must not be zero (it is the disc's normal)");
+  else if (std::abs(in.section_velocity.dot(v)) > 1e-9 * in.section_velocity.norm() * v.norm())
+    t.error("section_velocity", "the section moves in its own plane: section_velocity must be perpendicular to velocity");
+}
+
+}  // namespace
 
 void read_inlet(SceneSpec& s, const TableReader& t) {
   InletSpec in;
@@ -21,12 +40,19 @@ void read_inlet(SceneSpec& s, const TableReader& t) {
   } else if (s.bodies.size() != 1) {
     t.error("", "missing key body (the scene has several bodies)");
   }
-  in.from = t.vec2("from");
-  in.to = t.vec2("to");
   in.velocity = t.vec2("velocity");
   in.start = t.real("start");
   in.duration = t.real("duration");
   in.spacing = t.real("spacing");
+  if (s.scene.dimension == 3) {
+    read_disc(in, t);
+    s.inlets.push_back(in);
+    return;
+  }
+  for (const char* k : {"centre", "radius", "section_velocity"})
+    if (t.has(k)) t.error(k, std::string(k) + " is a key of a 3D inlet (a disc); a 2D inlet is the segment from `from` to `to`");
+  in.from = t.vec2("from");
+  in.to = t.vec2("to");
   const Vec2 section = in.to - in.from;
   if (t.has("from") && t.has("to") && !(section.norm() > 0.0)) t.error("to", "the section has zero length (from and to coincide)");
   // The velocity must carry material across the section: its normal component relative to its own size.

@@ -16,7 +16,8 @@ void read_probe(SceneSpec& s, const TableReader& t) {
                                   {"extent", ProbeKind::extent}, {"pressure_jump", ProbeKind::pressure_jump},
                                   {"volume", ProbeKind::volume}, {"remesh", ProbeKind::remesh}, {"energy", ProbeKind::energy},
                                   {"stress", ProbeKind::stress}, {"wall_force", ProbeKind::wall_force}, {"penetration", ProbeKind::penetration},
-                                  {"speed", ProbeKind::speed}, {"mass", ProbeKind::mass}, {"angular_momentum", ProbeKind::angular_momentum}});
+                                  {"speed", ProbeKind::speed}, {"mass", ProbeKind::mass}, {"angular_momentum", ProbeKind::angular_momentum},
+                                  {"section", ProbeKind::section}});
   p.energy = pick<EnergyPart>(t.string("energy"), {{"kinetic", EnergyPart::kinetic}, {"elastic", EnergyPart::elastic}, {"total", EnergyPart::total},
                                                              {"potential", EnergyPart::potential}, {"mechanical", EnergyPart::mechanical}});
   p.max = t.string("bound") == "max";
@@ -35,6 +36,11 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   const bool vector_component = component == "x" || component == "y" || component == "z";
   if (p.kind == ProbeKind::wall_force && component == "normal") {
     p.component = 3;  // after x, y, z
+  } else if (component == "area") {
+    if (p.kind != ProbeKind::section) t.error("component", "component area is read by section probes");
+    p.component = 5;  // after x, y, z, normal and r
+  } else if (p.kind == ProbeKind::section && t.has("component") && !vector_component) {
+    t.error("component", "a section probe reads area, or the largest (bound = \"min\": smallest) x, y or z of the cut");
   } else if (component == "r") {
     if (p.kind != ProbeKind::extent || s.scene.dimension != 3)
       t.error("component", "component r (the distance from the z axis) is read by extent probes in 3D (scene.dimension = 3)");
@@ -119,6 +125,27 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       needs("quantity"), unused("boundary"), unused("component"), unused("at"), unused("body"), unused("group");
       if (s.scene.method != Method::pfem && s.scene.method != Method::es_pfem) t.error("kind", "kind = \"remesh\" needs method = \"pfem\" or \"es_pfem\"");
       break;
+    case ProbeKind::section: {
+      unused("boundary"), unused("group");
+      if (s.scene.dimension != 3) t.error("kind", "kind = \"section\" cuts a body with a plane: three-dimensional (scene.dimension = 3)");
+      if (is_mpm(s.scene.method)) t.error("kind", "kind = \"section\" cuts the cells of fem, pfem and es_pfem meshes");
+      needs("at"), needs("normal");
+      p.at = t.vec2("at"), p.at_z = t.component("at", 2);
+      p.normal = Vec3(t.component("normal", 0), t.component("normal", 1), t.component("normal", 2));
+      if (t.has("normal") && !(p.normal.norm() > 0.0)) t.error("normal", "the section's normal has zero length");
+      else p.normal.normalize();
+      if (!t.has("component")) p.component = 5;
+      if (t.has("body")) {
+        const std::string body = t.string("body");
+        p.body = find_by_name(s.bodies, body);
+        if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+      } else if (s.bodies.size() == 1) {
+        p.body = 0;
+      } else {
+        t.error("", "missing key body (the scene has several bodies)");
+      }
+      break;
+    }
     case ProbeKind::speed:
     case ProbeKind::mass:
       if (is_mpm(s.scene.method)) t.error("kind", "kind = \"" + kind + "\" reads the nodes and cells of fem, pfem and es_pfem meshes");
@@ -148,7 +175,8 @@ void read_probe(SceneSpec& s, const TableReader& t) {
     }
   }
   if (t.has("reference")) p.has_reference = true, p.reference = t.real("reference");
-  if (p.kind != ProbeKind::extent) unused("bound");
+  if (p.kind != ProbeKind::extent && (p.kind != ProbeKind::section || p.component == 5)) unused("bound");
+  if (p.kind != ProbeKind::section) unused("normal");
   if (p.kind != ProbeKind::remesh) unused("quantity");
   if (p.kind != ProbeKind::energy) unused("energy");
   if (p.kind != ProbeKind::wall_force && p.kind != ProbeKind::penetration) unused("wall");

@@ -34,7 +34,7 @@ enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_pe
 enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file, box };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
-                       angular_momentum };
+                       angular_momentum, section };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
 enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed, flipped, slivers, capped };
 
@@ -239,6 +239,7 @@ struct ProbeSpec {
   bool max = true;            // extent: largest (true) or smallest coordinate
   RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh
   Index inlet = kNoIndex;     // volume, mass: only the part of the body downstream of this inlet's section
+  Vec3 normal = Vec3::Zero();  // section (3D): the unit normal of the plane through `at` that cuts the body
   EnergyPart energy = EnergyPart::total;  // energy
   bool has_reference = false;  // a reference value (a converged solution, a closed form) printed against the last value
   double reference = 0.0;
@@ -256,6 +257,10 @@ struct InletSpec {
   Vec2 velocity = Vec2::Zero();
   double start = 0.0, duration = 0.0;
   double spacing = 0.0;
+  // 3D (scene.dimension = 3): the section is the disc of `radius` about `centre` normal to the velocity (its z in
+  // velocity_z); while the inlet runs the disc moves at section_velocity (perpendicular to the velocity: a nozzle).
+  Vec3 centre = Vec3::Zero(), section_velocity = Vec3::Zero();
+  double radius = 0.0, velocity_z = 0.0;
   SourceRef where;
 };
 

@@ -326,18 +326,21 @@ std::vector<KeySpec> build_schema() {
                   "body's mass, density times its reference area (the area it would have unstressed: volume is smaller by what the "
                   "pressure compresses it). volume and mass with `inlet`: only what lies downstream of the inlet's section (the poured "
                   "material). angular_momentum (dynamic fem, pfem, es_pfem with "
-                  "the lumped mass; mpm): sum m (r x v), r from `at` (default the origin), of the nodes or particles.")
+                  "the lumped mass; mpm): sum m (r x v), r from `at` (default the origin), of the nodes or particles. section (3D fem, pfem, "
+                  "es_pfem): the cut of a body by the plane through `at` with `normal`: its area (component = \"area\", the default), or "
+                  "the largest (bound = \"min\": smallest) x, y or z of the cut (the width and height of a printed layer).")
                   .one_of({"reaction", "point", "newton", "extent", "pressure_jump", "volume", "remesh", "energy", "angular_momentum", "stress", "wall_force",
-                           "penetration", "speed", "mass"}).require());
+                           "penetration", "speed", "mass", "section"}).require());
   s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));
   s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z; an extent probe in 3D also r, the distance from the z axis, sqrt(x^2 + y^2): the spread of a slump), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), or of a stress probe.")
-                  .one_of({"x", "y", "z", "r", "normal", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
-  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe; of an angular_momentum probe, the point the moments are taken about (default the origin)."));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z; an extent probe in 3D also r, the distance from the z axis, sqrt(x^2 + y^2): the spread of a slump), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), of a section probe (area, x, y, z), or of a stress probe.")
+                  .one_of({"x", "y", "z", "r", "normal", "area", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
+  s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe; of an angular_momentum probe, the point the moments are taken about (default the origin); a point of a section probe's plane."));
+  s.push_back(key("probe[].normal", K::vec2, "Of a section probe (3D): the normal of the cutting plane (need not be a unit vector)."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
-  s.push_back(key("probe[].bound", K::choice, "Which extent: max or min.").one_of({"max", "min"}).by_default("max"));
+  s.push_back(key("probe[].bound", K::choice, "Which extent (of an extent probe, or a section probe's x, y or z): max or min.").one_of({"max", "min"}).by_default("max"));
   s.push_back(key("probe[].reference", K::real,
                   "A reference value of the probe (a converged solution, a closed form, a measurement): at the end of a run loom "
                   "prints the probe's last value against it with their relative difference. Informational: it does not change the "

@@ -52,12 +52,23 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "unstressed history, is joined to it one spacing behind. The body's mesh must start at the section: its particles on "
                   "the section are the first row released, and the first new row is placed so that the last one reaches the section "
                   "when the inflow ends; it is then released. The poured area is |velocity . n| times the section's length times "
-                  "the duration."));
+                  "the duration. In 3D the section is a disc (centre, radius) normal to the velocity: the body's particles on it and "
+                  "its surface triangles there are the first layer, and each new layer is a copy of it one spacing upstream, joined "
+                  "to the layer in front by three tetrahedra per triangle; the disc may move at section_velocity (a printing "
+                  "nozzle), the driven layer with it. The poured volume is |velocity . n| times the area of the body's section "
+                  "in the disc times the duration."));
   s.push_back(key("inlet[].name", K::string, "Name of the inlet (volume and mass probes may count only what lies downstream of it).").require());
   s.push_back(key("inlet[].body", K::string, "The body that flows in (default: the only body)."));
-  s.push_back(key("inlet[].from", K::vec2, "One end of the inlet section.").require());
-  s.push_back(key("inlet[].to", K::vec2, "The other end of the inlet section.").require());
-  s.push_back(key("inlet[].velocity", K::vec2, "Velocity of the inflowing material; must cross the section (not parallel to it).").require());
+  s.push_back(key("inlet[].from", K::vec2, "2D: one end of the inlet section.").require_unless("centre"));
+  s.push_back(key("inlet[].to", K::vec2, "2D: the other end of the inlet section.").require_unless("centre"));
+  s.push_back(key("inlet[].centre", K::vec2, "3D: the centre of the inlet's disc, at t = start.").require_unless("from"));
+  s.push_back(key("inlet[].radius", K::real, "3D: the radius of the inlet's disc (the body's particles on the disc's plane within it are the first layer).").above(0));
+  s.push_back(key("inlet[].section_velocity", K::vec2,
+                  "3D: velocity of the disc while the inlet runs (perpendicular to velocity: a nozzle moving along a print path); the "
+                  "driven layer moves at velocity + section_velocity.").by_default("[0, 0, 0]"));
+  s.push_back(key("inlet[].velocity", K::vec2,
+                  "Velocity of the inflowing material relative to the section; must cross the section (not parallel to it; 3D: the "
+                  "disc's normal).").require());
   s.push_back(key("inlet[].start", K::real, "Time the inflow starts.").by_default("0").at_least(0));
   s.push_back(key("inlet[].duration", K::real, "How long the inflow lasts.").require().above(0));
   s.push_back(key("inlet[].spacing", K::real,

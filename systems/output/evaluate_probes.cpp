@@ -10,6 +10,7 @@
 #include "engine/mesh/quad9_shape.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 #include "systems/output/mesh_energy.hpp"
+#include "systems/output/tet_sections.hpp"
 
 namespace loom {
 
@@ -55,11 +56,30 @@ double gauss_lagrange_weight(const std::array<double, 3>& l, int q) {
   return Lx[q % 3] * Ly[q / 3];  // quad9_gauss: point q = 3 j + i at (g_i, g_j)
 }
 
+std::array<Vec3, 4> corners_at(const Nodes<3>& nodes, const Cells& cb, Index c) {
+  return {nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2)), nodes.position_n(cb.node(c, 3))};
+}
+
+// A section probe: the area of the cut of the body's cells by its plane, or the largest (smallest) coordinate of the
+// cut's points along the probe's component (NaN where the plane misses the body).
+double section_value(const ProbeSpec& p, const MovingPlane& plane, const Nodes<3>& nodes, const std::vector<Cells>& cells) {
+  double area = 0.0, e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  for (const Cells& cb : cells)
+    for (Index c = 0; c < cb.size(); ++c) {
+      if (cb.body[c] != p.body) continue;
+      const TetCut cut = cut_tet(corners_at(nodes, cb, c), plane.point, plane.normal);
+      area += cut.area();
+      for (int i = 0; i < cut.n; ++i) e = p.max ? std::max(e, cut.points[std::size_t(i)][p.component]) : std::min(e, cut.points[std::size_t(i)][p.component]);
+    }
+  if (p.component == 5) return area;
+  return std::isfinite(e) ? e : kNaN;
+}
+
 // Area of a probe's body cells (weights: dV_n per point, or the seed-001 triangles' reference areas A_0 times rho)
 // on the downstream side of an inlet's section when the plan has one. Summed point by point in cell order, so that
 // an unclipped volume is the plain sum of the weights dV_n.
 template <int D>
-double body_measure(const ProbePlan& plan, std::size_t k, bool mass, const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes,
+double body_measure(const ProbePlan& plan, std::size_t k, bool mass, double t, const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes,
                     const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad) {
   const ProbeSpec& p = plan.probes[k];
   const double rho = materials[std::size_t(p.body)].density;
@@ -74,6 +94,8 @@ double body_measure(const ProbePlan& plan, std::size_t k, bool mass, const std::
         if (p.inlet != kNoIndex)
           f = fraction_downstream(nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2)),
                                   plan.downstream[k][0], plan.downstream[k][1]);
+      if constexpr (D == 3)
+        if (p.inlet != kNoIndex) f = tet_fraction_downstream(corners_at(nodes, cb, c), plan.planes[k].point_at(t), plan.planes[k].normal);
       if (mass && reference_area) {
         sum += rho * cb.measure[c] * f;
         continue;
@@ -165,7 +187,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::
       }
     plan.samples.push_back(std::move(samples));
     std::array<Vec2, 2> downstream{Vec2::Zero(), Vec2::Zero()};
-    if (p.inlet != kNoIndex) {  // the section's normal along the inflow (engine/methods/pfem/inlet_flow.hpp)
+    if (D == 2 && p.inlet != kNoIndex) {  // the section's normal along the inflow (engine/methods/pfem/inlet_flow.hpp)
       const InletSpec& in = scene.inlets[std::size_t(p.inlet)];
       const Vec2 t = (in.to - in.from).normalized();
       Vec2 n(-t.y(), t.x());
@@ -173,6 +195,14 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::
       downstream = {in.from, n};
     }
     plan.downstream.push_back(downstream);
+    MovingPlane plane;
+    if (p.kind == ProbeKind::section) plane.point = Vec3(p.at.x(), p.at.y(), p.at_z), plane.normal = p.normal;
+    if (D == 3 && p.inlet != kNoIndex) {  // the disc's plane (engine/methods/pfem/inlet_flow_3d.hpp)
+      const InletSpec& in = scene.inlets[std::size_t(p.inlet)];
+      plane.point = in.centre, plane.velocity = in.section_velocity, plane.start = in.start, plane.duration = in.duration;
+      plane.normal = Vec3(in.velocity.x(), in.velocity.y(), in.velocity_z).normalized();
+    }
+    plan.planes.push_back(plane);
     plan.node.push_back(best);
     plan.nodes.push_back(std::move(body_nodes));
     plan.cell_pairs.push_back(std::move(pairs));
@@ -181,7 +211,7 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::
 }
 
 template <int D>
-void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
+void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::vector<BodyMaterial>& materials,
                      const Nodes<D>& nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
                      const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                      const RemeshStats& remesh, const std::vector<WallResult>& walls, std::vector<double>& values,
@@ -217,7 +247,10 @@ void evaluate_probes(const StepContext&, const ProbePlan& plan, const std::vecto
       }
       case ProbeKind::volume:
       case ProbeKind::mass:
-        values[k] = body_measure(plan, k, p.kind == ProbeKind::mass, materials, nodes, cells, quad);
+        values[k] = body_measure(plan, k, p.kind == ProbeKind::mass, ctx.t, materials, nodes, cells, quad);
+        break;
+      case ProbeKind::section:
+        if constexpr (D == 3) values[k] = section_value(p, plan.planes[k], nodes, cells);
         break;
       case ProbeKind::speed: {
         double fastest = 0.0;

@@ -22,9 +22,13 @@
 //  mass:          the body's mass: density times the reference area of its cells (a seed-001 triangle's reference
 //                 area A_0, else dV_n / det F_n per quadrature point; for p1p1_uphi F is F~, det F~ = phi);
 //  volume and mass of a probe with an inlet count each cell's part downstream of the inlet's section (the cell's
-//                 corner triangle at x_n clipped by the section's line).
+//                 corner triangle at x_n clipped by the section's line; 3D: the corner tetrahedron by the disc's plane
+//                 where the disc is at the time of the probe);
+//  section (3D):  the cut of the body's corner tetrahedra at x_n by a plane: its area, or the largest (smallest)
+//                 coordinate of its points along a component (systems/output/tet_sections.hpp).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -53,6 +57,13 @@ inline Vec<D> probe_point(const ProbeSpec& p) {
   else return Vec3(p.at.x(), p.at.y(), p.at_z);
 }
 
+// A plane (x - point(t)) . normal = 0 whose point moves at `velocity` during [start, start + duration] (an inlet's disc).
+struct MovingPlane {
+  Vec3 point = Vec3::Zero(), normal = Vec3::Zero(), velocity = Vec3::Zero();
+  double start = 0.0, duration = 0.0;
+  Vec3 point_at(double t) const { return point + std::clamp(t - start, 0.0, duration) * velocity; }
+};
+
 struct ProbePlan {
   std::vector<ProbeSpec> probes;
   std::vector<std::vector<StressSample>> samples;  // stress probes: the cells that hold the point
@@ -60,6 +71,7 @@ struct ProbePlan {
   std::vector<std::vector<Index>> nodes;      // extent probes: the body's nodes
   std::vector<std::vector<std::array<Index, 3>>> cell_pairs;  // pressure_jump: (block, cell, cell) across interior edges
   std::vector<std::array<Vec2, 2>> downstream;  // volume, mass with an inlet: a point of its section and the inflow normal
+  std::vector<MovingPlane> planes;               // 3D: a section probe's plane; an inlet's disc plane (volume, mass)
 };
 
 // The part of triangle (a, b, c) on the side of the line through `point` that `normal` points to, as a fraction of
@@ -68,8 +80,7 @@ double fraction_downstream(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
 
 // Finds the node of each point probe (nearest in reference coordinates, among the nodes of its body), the
 // nodes of extent probes and the interior edges of pressure_jump probes.
-// Instantiated for D = 2 and 3 (3D: the kinds the loader allows there, without stress, pressure_jump, walls,
-// remesh and inlets).
+// Instantiated for D = 2 and 3 (3D: the kinds the loader allows there, without stress and pressure_jump).
 template <int D>
 ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::vector<Cells>& cells,
                       const std::vector<Index>& node_body);

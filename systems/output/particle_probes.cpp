@@ -143,6 +143,7 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
       case ProbeKind::stress:
       case ProbeKind::wall_force:  // [[wall]] is refused for method mpm
       case ProbeKind::penetration:
+      case ProbeKind::section:  // fem, pfem and es_pfem meshes only (the loader refuses it for mpm)
       case ProbeKind::remesh: values[k] = kNaN; break;
     }
   }

@@ -43,6 +43,7 @@ const std::map<std::string, Case>& cases() {
       {"column_slump_es_3d", {6, {}}},
       {"column_twisting_fem", {3, {"body[0].mesh.divisions=[2,2,12]"}}},
       {"column_twisting_mpm", {3, {"body[0].mesh.divisions=[2,2,12]", "grid.divisions=[8,8,14]"}}},
+      {"concrete_printing_es_3d", {6, {}}},
       {"constrained_block_fem", {6, {}}},
       {"cooks_membrane", {3, {"body[0].mesh.divisions=[16,16]"}}},
       {"constrained_block_pfem", {6, {}}},

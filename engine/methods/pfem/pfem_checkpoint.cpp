@@ -25,6 +25,24 @@ void restore_particles(const CheckpointReader& r, Topology& topology, Model& m, 
   }
 }
 
+void write_inlets(CheckpointWriter& w, const std::vector<InletState>& inlets) {
+  for (std::size_t k = 0; k < inlets.size(); ++k) {
+    const std::string key = "topology/inlet/" + std::to_string(k);
+    w.vector(key + "/row", inlets[k].row);
+    w.value(key + "/state", char(int(inlets[k].started) + 2 * int(inlets[k].closed)));
+  }
+}
+
+void restore_inlets(const CheckpointReader& r, std::vector<InletState>& inlets, Index n_points) {
+  for (std::size_t k = 0; k < inlets.size(); ++k) {
+    const std::string key = "topology/inlet/" + std::to_string(k);
+    r.vector(key + "/row", inlets[k].row);
+    const char state = r.value<char>(key + "/state");
+    inlets[k].started = state & 1, inlets[k].closed = (state & 2) != 0;
+    for (Index v : inlets[k].row) r.expect(v >= 0 && v < n_points, "has inlet rows on nodes that are not particles");
+  }
+}
+
 }  // namespace
 
 void write_topology(CheckpointWriter& w, const PfemTopology& topology, const FemModel& m) {
@@ -32,11 +50,7 @@ void write_topology(CheckpointWriter& w, const PfemTopology& topology, const Fem
   // A particle set that changes (insertion, removal, inflow): its size, the inlets' rows and what renumbering
   // touched (dead-load edges, mesh-file regions).
   w.value("topology/n_points", topology.n_points);
-  for (std::size_t k = 0; k < topology.inlets.size(); ++k) {
-    const std::string key = "topology/inlet/" + std::to_string(k);
-    w.vector(key + "/row", topology.inlets[k].row);
-    w.value(key + "/state", char(int(topology.inlets[k].started) + 2 * int(topology.inlets[k].closed)));
-  }
+  write_inlets(w, topology.inlets);
   std::vector<Index> traction_ends;
   for (const auto& e : topology.tractions) traction_ends.insert(traction_ends.end(), {e.a, e.b});
   w.vector("topology/traction_ends", traction_ends);
@@ -52,13 +66,7 @@ void write_topology(CheckpointWriter& w, const PfemTopology& topology, const Fem
 
 void restore_topology(const CheckpointReader& r, PfemTopology& topology, FemModel& m, bool particles_change) {
   restore_particles(r, topology, m, particles_change);
-  for (std::size_t k = 0; k < topology.inlets.size(); ++k) {
-    const std::string key = "topology/inlet/" + std::to_string(k);
-    r.vector(key + "/row", topology.inlets[k].row);
-    const char state = r.value<char>(key + "/state");
-    topology.inlets[k].started = state & 1, topology.inlets[k].closed = (state & 2) != 0;
-    for (Index v : topology.inlets[k].row) r.expect(v >= 0 && v < topology.n_points, "has inlet rows on nodes that are not particles");
-  }
+  restore_inlets(r, topology.inlets, topology.n_points);
   std::vector<Index> traction_ends;
   r.vector("topology/traction_ends", traction_ends);
   r.expect_size("dead-load edge ends", traction_ends.size(), 2 * topology.tractions.size());
@@ -84,11 +92,13 @@ void restore_topology(const CheckpointReader& r, PfemTopology& topology, FemMode
 
 void write_topology(CheckpointWriter& w, const PfemTopology3d& topology, const FemModelT<3>&) {
   w.value("topology/n_points", topology.n_points);
+  write_inlets(w, topology.inlets);
   for (std::size_t b = 0; b < topology.tets.size(); ++b) w.vector("topology/tets/" + std::to_string(b), topology.tets[b]);
 }
 
 void restore_topology(const CheckpointReader& r, PfemTopology3d& topology, FemModelT<3>& m, bool particles_change) {
   restore_particles(r, topology, m, particles_change);
+  restore_inlets(r, topology.inlets, topology.n_points);
   for (std::size_t b = 0; b < topology.tets.size(); ++b) {
     r.vector("topology/tets/" + std::to_string(b), topology.tets[b]);
     for (Index v : topology.tets[b]) r.expect(v >= 0 && v < topology.n_points, "has cells on nodes that are not particles");

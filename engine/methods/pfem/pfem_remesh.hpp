@@ -52,7 +52,7 @@ PfemTopology3d initial_topology(const FemModelT<3>& model);
 // the start of the step (inlets start and end by it).
 RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology& topology, FemModel& model, Timers& timers);
 // On tetrahedra (pfem_remesh_3d.cpp): the 3D remesh of every body, tet10 mid-nodes dropped and re-created, the history
-// carried by the 3D map_state; no particle edits or inflow.
+// carried by the 3D map_state; particle insertion and inflow (inlet_flow_3d.hpp), no removal.
 RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology3d& topology, FemModelT<3>& model, Timers& timers);
 
 // Boundary conditions (eq-24 ties, frozen tractions of `topology`), dofs, sparsity and scatters of the

@@ -1,5 +1,6 @@
 // The PFEM remesh stage on tetrahedra (methods pfem and es_pfem, scene.dimension = 3; spec 3d-free-surface §3-§5): the
-// 2D stage of pfem_remesh.cpp with particle insertion (particle_insertion_3d.hpp) and without removal or inflow. Before each step the particles at
+// 2D stage of pfem_remesh.cpp with particle insertion (particle_insertion_3d.hpp) and inflow (inlet_flow_3d.hpp), without
+// removal. Before each step the particles at
 // X_n are remeshed (systems/remesh/remesh_3d.hpp: the previous mesh plays the role of 2D's boundary constraints),
 // tet10 mid-nodes are dropped and re-created on the straight edges with averaged nodal columns, the quadrature
 // history is copied for surviving cells and mapped (CPM / BTM-ISO0/1/2 on a Delaunay_triangulation_3 of the old
@@ -15,6 +16,7 @@
 #include "engine/methods/model/build_boundary_conditions.hpp"
 #include "engine/methods/model/build_solid_3d.hpp"
 #include "engine/methods/pfem/domain_transfer.hpp"
+#include "engine/methods/pfem/inlet_flow_3d.hpp"
 #include "engine/methods/pfem/particle_insertion_3d.hpp"
 #include "engine/methods/pfem/pfem_remesh.hpp"
 #include "systems/assemble/compute_geometry.hpp"
@@ -189,10 +191,11 @@ PfemTopology3d initial_topology(const FemModelT<3>& m) {
   topo.tractions = m.bc.traction_faces;
   for (auto& f : topo.tractions) f.nodes[3] = f.nodes[4] = f.nodes[5] = kNoIndex;
   topo.spacing = initial_spacing_3d(topo, m.nodes);
+  topo.inlets.assign(m.scene.inlets.size(), InletState{});
   return topo;
 }
 
-RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& topo, FemModelT<3>& m, Timers& timers) {
+RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology3d& topo, FemModelT<3>& m, Timers& timers) {
   RemeshReport report;
   const std::size_t n_bodies = m.scene.bodies.size();
   for (std::size_t b = 0; b < n_bodies; ++b) report.area_before += corner_volume(m.nodes, topo.tets[b]);
@@ -201,6 +204,12 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   if (settings.edits.insert_above > 0.0) {
     ScopedTimer edit(timers, "remesh/change_particles");
     report.inserted = insert_particles_3d(settings.edits.insert_above, topo, m);
+  }
+  // ... and new layers poured in at the inlets (their cells added to the previous mesh).
+  bool released = false;
+  if (!m.scene.inlets.empty()) {
+    ScopedTimer pour(timers, "remesh/change_particles");
+    report.inserted += pour_inlets_3d(m.scene.inlets, t_n, topo, m, released);
   }
 
   // 1. Every body's new tetrahedra, from its particles at X_n and its previous mesh.
@@ -252,7 +261,10 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
   triangulate.stop();
   bool quadratic = false;
   for (const Cells& cb : m.cells) quadratic = quadratic || cb.type == CellType::tet10;
-  if (!report.changed && !quadratic) return report;  // nothing to transfer, nothing to rebuild
+  if (!report.changed && !quadratic) {  // nothing to transfer, nothing to rebuild but a released layer's conditions
+    if (released) rebuild_system(m, topo, false);
+    return report;
+  }
 
   // 3. New cells (tet10: mid-nodes dropped and re-created at the straight midpoints), their geometry and history.
   ScopedTimer rebuild(timers, "remesh/rebuild_cells");
@@ -287,6 +299,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double, PfemTopology3d& 
 void rebuild_system(FemModelT<3>& m, const PfemTopology3d& topo, bool connectivity_changed) {
   const int per_node = m.system.dofs.per_node;
   m.bc = build_boundary_conditions_3d(m.scene, m.nodes, m.cells, m.node_body, m.regions, per_node, /*tie_mid_nodes=*/true, &topo.tractions);
+  add_inlet_layers(m.scene.inlets, topo, m.bc);
   std::vector<DofKind> kinds = dof_kinds(m.bc, m.cells, m.nodes.size(), per_node);
   std::vector<char> in_cell(std::size_t(m.nodes.size()), 0);
   for (const Cells& cb : m.cells)

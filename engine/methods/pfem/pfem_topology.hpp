@@ -39,7 +39,8 @@ struct PfemTopology {
 
 // The same on tetrahedra (method pfem with scene.dimension = 3): per body the particles, the corner tetrahedra and the
 // outward surface faces of the current mesh (the next remesh's "old mesh", spec 3d-free-surface §3), and the
-// dead-load traction faces of the initial mesh on corners. Particle insertion, no removal; no inlets in 3D yet.
+// dead-load traction faces of the initial mesh on corners, and the state of each inlet (its driven layer in `row`).
+// Particle insertion and inflow; no removal.
 struct PfemTopology3d {
   Index n_points = 0;
   std::vector<std::vector<Index>> points_of_body;
@@ -48,6 +49,7 @@ struct PfemTopology3d {
   std::vector<std::vector<std::array<Index, 4>>> neighbours;  // per body: tet_face_neighbours of tets (cell indices in the body)
   std::vector<TractionFace> tractions;                       // loaded faces of the initial mesh, on corners (dead loads)
   std::vector<double> spacing;                               // per body: h0 of particle insertion (as PfemTopology's)
+  std::vector<InletState> inlets;                            // per [[inlet]]
 };
 
 // The topology a D-dimensional pfem run keeps.

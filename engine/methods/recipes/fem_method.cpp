@@ -13,6 +13,7 @@
 #include "engine/io/vtk_writer.hpp"
 #include "engine/methods/model/model_checks.hpp"
 #include "engine/methods/pfem/inlet_flow.hpp"
+#include "engine/methods/pfem/inlet_flow_3d.hpp"
 #include "engine/methods/recipes/adaptive_step.hpp"
 #include "engine/methods/recipes/conditioning_note.hpp"
 #include "engine/methods/recipes/cut_back_policy.hpp"
@@ -100,7 +101,8 @@ void FemRunT<D>::check_model() const {
   }
 }
 
-// An inlet's section must be an edge of its body's initial mesh: the particles on it are the first row released.
+// An inlet's section must be an edge (3D: triangles) of its body's initial mesh: the particles on it are the first row
+// (layer) released.
 template <int D>
 void FemRunT<D>::check_inlets() const {
   if constexpr (D == 2) {
@@ -122,6 +124,8 @@ void FemRunT<D>::check_inlets() const {
          << "\" (the material would flow in on the side where the body is not)";
     LOOM_CHECK(frame.distance(centre) > 0.0, InputError, side.str());
   }
+  } else {
+    check_inlet_discs(scene_, topology_, m_.nodes);
   }
 }
 
