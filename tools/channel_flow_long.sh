@@ -5,7 +5,7 @@
 # 10 times more steps over the 140 s of creep; the phases' result on n = 10 is 0.3 % from 5 ms steps throughout
 # (docs/BENCHMARKS.md, "The paper's three meshes to 200 s"). Each phase restarts from the newest checkpoint (every 500
 # steps), so a run interrupted anywhere continues when the script is run again with the same OUT. (time.adaptive_dt
-# gives the same schedule in one run: README, Free-surface flows; the committed study was run with this script.)
+# gives the same schedule in one run: docs/guide/walls_and_free_surfaces.md, Free-surface flows; the committed study was run with this script.)
 # N is the mesh: h = 62.5 mm / N, the initial block [round(0.4 N), N] elements (the paper's 1300, 4800, 7300 triangles
 # at the end: N = 10, 18, 22, the meshes this was run on; N = 4 fails while pouring). Run time on one core: about
 # 15 min, 80 min and 2.5 h.

@@ -6,7 +6,7 @@ refined ones.
 
 Every curve is one `loom run` of a committed scene with --set overrides; nothing is tuned. All cases run the
 FEM scene except tri6_eq24_ties: the PFEM scene with remeshing off (remesh.every > steps), i.e. tri6 with the
-seed's eq-24 ties of boundary mid-nodes and nothing else of PFEM (the paper's FEM-TRI6 as read in the README). Writes under
+seed's eq-24 ties of boundary mid-nodes and nothing else of PFEM (the paper's FEM-TRI6 as read in docs/guide/scenes.md). Writes under
 OUT (default docs/constrained_block/):
   curves.csv                 long format: case, element, alpha_s, mesh, step, u_pre, force, pressure_jump, uy_top_right, newton
   summary.csv                one row per run: final force and pressure jump, Newton iterations, converged
@@ -17,7 +17,7 @@ OUT (default docs/constrained_block/):
 Usage (from the repository root, after building build/loom):
   /usr/bin/python3 tools/constrained_block_study.py [--loom build/loom] [--out docs/constrained_block] [--fine]
 Meshes are named as in the paper, rows x columns of element edges (4x8: divisions [8, 4]).
---fine adds the 16x32 meshes (tri6 takes about a minute there; p1p1_uphi stops early, see the README).
+--fine adds the 16x32 meshes (tri6 takes about a minute there; p1p1_uphi stops early, see docs/guide/scenes.md).
 Python 3 with Debian's numpy and matplotlib; no other dependency.
 """
 import argparse

@@ -20,7 +20,7 @@
 # that the penetration stays the same fraction of the ground's spacing (the held strip below the first row is first
 # order in that row's height: docs/free_surface.md). SPACING_RAMP (m, default 0: one body spacing, 5 mm) is the distance
 # over which the ground's spacing grows to the body's; over one body spacing the first row stays about 4.7 times the
-# ground's spacing at 1.25 mm (wall[].spacing_ramp in the README). DIVISIONS (default 10: the scene's h = 5 mm) is the
+# ground's spacing at 1.25 mm (wall[].spacing_ramp in docs/guide/scene_keys.md). DIVISIONS (default 10: the scene's h = 5 mm) is the
 # body mesh's n, divisions [n, 2n] of the 0.05 m x 0.1 m half-column (h = 50 mm / n); the ground's spacing and ramp
 # are lengths and stay as given.
 #   tools/thin_collapse_long.sh OUT [until_seconds=150] [loom=build/loom] [ground_spacing=1.25e-3] [spacing_ramp=0]

@@ -1,6 +1,6 @@
 // The scene schema: every key a scene may hold, with its type, default, range and meaning.
 // The validator checks scenes against it, the loader takes defaults from it, and `loom schema` and the
-// README's key reference are printed from it, so the three cannot drift apart (STYLE §6).
+// user guide's key table (docs/guide/scene_keys.md) are printed from it, so the three cannot drift apart (STYLE §6).
 #pragma once
 
 #include <optional>
