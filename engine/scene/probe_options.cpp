@@ -3,6 +3,22 @@
 #include "engine/scene/loader_support.hpp"
 
 namespace loom {
+namespace {
+
+// The probe's `body`: the named one, else the scene's only body, else `if_several` (kNoIndex: the key is missing).
+Index probe_body(const SceneSpec& s, const TableReader& t, Index if_several = kNoIndex) {
+  if (t.has("body")) {
+    const std::string body = t.string("body");
+    const Index b = find_by_name(s.bodies, body);
+    if (b == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
+    return b;
+  }
+  if (s.bodies.size() == 1) return 0;
+  if (if_several == kNoIndex) t.error("", "missing key body (the scene has several bodies)");
+  return if_several;
+}
+
+}  // namespace
 
 void read_probe(SceneSpec& s, const TableReader& t) {
   ProbeSpec p;
@@ -135,15 +151,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       if (t.has("normal") && !(p.normal.norm() > 0.0)) t.error("normal", "the section's normal has zero length");
       else p.normal.normalize();
       if (!t.has("component")) p.component = 5;
-      if (t.has("body")) {
-        const std::string body = t.string("body");
-        p.body = find_by_name(s.bodies, body);
-        if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
-      } else if (s.bodies.size() == 1) {
-        p.body = 0;
-      } else {
-        t.error("", "missing key body (the scene has several bodies)");
-      }
+      p.body = probe_body(s, t);
       break;
     }
     case ProbeKind::speed:
@@ -158,17 +166,8 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       if (p.kind == ProbeKind::extent) needs("component");
       else unused("component");
       unused("boundary"), unused("at"), unused("group");
-      if (t.has("body")) {
-        const std::string body = t.string("body");
-        p.body = find_by_name(s.bodies, body);
-        if (p.body == kNoIndex) t.error("body", "no [[body]] named \"" + body + "\" (known: " + names_of(s.bodies) + ")");
-      } else if (s.bodies.size() == 1) {
-        p.body = 0;
-      } else if (s.scene.method == Method::mpm_fem && p.kind == ProbeKind::extent) {
-        p.body = mpm_body_index(s);  // extent probes read the particles
-      } else {
-        t.error("", "missing key body (the scene has several bodies)");
-      }
+      // Method mpm_fem: extent probes read the particles.
+      p.body = probe_body(s, t, s.scene.method == Method::mpm_fem && p.kind == ProbeKind::extent ? mpm_body_index(s) : kNoIndex);
       if (s.scene.method == Method::mpm_fem && p.kind == ProbeKind::extent && p.body != mpm_body_index(s))
         t.error("body", "method mpm_fem: an extent probe reads the particles of the MPM body \"" + s.bodies[std::size_t(mpm_body_index(s))].name + "\"");
       break;
