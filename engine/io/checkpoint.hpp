@@ -76,7 +76,9 @@ class CheckpointReader {
   }
   template <class T>
   void column(const std::string& name, Column<T>& c) const {
-    const bool used = value<char>(name + "#used") != 0;
+    // A column the checkpoint does not name is one its version did not have (particles/be before history materials
+    // reached the particles): unused.
+    const bool used = has(name + "#used") && value<char>(name + "#used") != 0;
     LOOM_CHECK(used == c.used(), InputError,
                path_ << ": error: the checkpoint " << (used ? "holds" : "does not hold") << " column " << name
                      << ", which this scene " << (used ? "does not use" : "uses")

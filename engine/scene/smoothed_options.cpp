@@ -50,9 +50,12 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
                              method_name(s.scene.method) + " takes other elements");
   } else if (s.scene.method == Method::es_pfem) {
     t.error("element", "method es_pfem takes the elements es_up, es_u, fem_up or fem_u, not " + std::string(element));
-  } else if (std::isfinite(m.tau0)) {
-    t.error("material", "material \"" + m.name + "\" yields (tau0): viscoplasticity needs an element that carries history (es_up, es_u, "
-                        "fem_up, fem_u), not " + element);
+  } else if (std::isfinite(m.tau0) && !(is_mpm(s.scene.method) && b.element == Formulation::p1)) {
+    // The material points of method mpm carry b^e (systems/assemble/materials/history_point.hpp); the quadrature
+    // points of p1, tri6 and p1p1_uphi in fem and pfem keep none yet.
+    t.error("material", "material \"" + m.name + "\" yields (tau0): viscoplasticity needs an integration point that carries its history "
+                        "b^e from step to step (the elements es_up, es_u, fem_up, fem_u, or method mpm's particles with element p1), not " +
+                        element + (b.element == Formulation::p1p1_up ? " (its pressure equation is that of neo_hooke_split)" : ""));
   }
 }
 

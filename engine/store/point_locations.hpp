@@ -19,6 +19,7 @@ struct PointLocations {
   Column<Vec4> N;      // shape functions of the cell's corners at x_n (tri3: barycentric, fourth entry 0)
   Column<Vec2> xi;     // quad9 grids: the point's coordinates in the reference square [-1, 1]^2 of its cell
   Column<Mat3> F;      // material points: deformation gradient at the current Newton iterate
+  Column<Mat3> be;     // materials with history: b^e after the return map at the iterate (committed at convergence)
   // Particle Newmark with receding contact (seed 004 §5): the side (0-3) of the host cell on a wall that
   // the particle moves away from this step, or kNoIndex.
   Column<Index> receding;
@@ -50,12 +51,13 @@ struct PointLocations {
     N.resize(n, Vec4::Zero());
     xi.resize(n, Vec2::Zero());
     F.resize(n, Mat3::Identity());
+    be.resize(n, Mat3::Identity());
     receding.resize(n, kNoIndex);
   }
 
   template <class Visit>
   void for_each_column(Visit&& f) {
-    f("cell", cell), f("N", N), f("xi", xi), f("F", F), f("receding", receding);
+    f("cell", cell), f("N", N), f("xi", xi), f("F", F), f("be", be), f("receding", receding);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

@@ -28,6 +28,7 @@ struct Points {
   Column<Index> body;
   Column<V> proj_u;         // OSGS (seed 003 §5): residual projections P_u, P_p carried between steps
   Column<double> proj_p;
+  Column<Mat3> be;          // materials with history (hencky_perzyna): converged elastic left Cauchy-Green b^e_n
 
   Index size() const {
     Index n = 0;
@@ -38,7 +39,7 @@ struct Points {
   template <class Visit>
   void for_each_column(Visit&& f) {
     f("X", X), f("u", u), f("v", v), f("a", a), f("mass", mass), f("volume", volume), f("F", F),
-        f("pressure", pressure), f("body", body), f("proj_u", proj_u), f("proj_p", proj_p);
+        f("pressure", pressure), f("body", body), f("proj_u", proj_u), f("proj_p", proj_p), f("be", be);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

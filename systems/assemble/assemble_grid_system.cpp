@@ -9,6 +9,7 @@
 #include "systems/assemble/grid_scatter.hpp"
 #include "systems/assemble/elements/ghost_face.hpp"
 #include "systems/assemble/elements/mixed_up_point.hpp"
+#include "systems/assemble/materials/history_point.hpp"
 #include "systems/update/grid_newmark.hpp"
 
 namespace loom {
@@ -37,8 +38,12 @@ Vec<D> body_force_of(const BoundaryConditions<D>& bc, Index p) {
 
 template <int NC, int D>
 void assemble_displacement(const Args<D>& x) {
+  // Materials with history (b^e at the particles): the step's return map from b^e_n, its b^e kept at the iterate.
+  const bool carries_history = x.particles.be.used();
+  const Column<Mat3>& history_n = x.particles.be;
+  Column<Mat3>& history_step = x.loc.be;
   const auto ahead = [&](Index c) {
-    x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body);
+    x.loc.prefetch_points_in(c, x.particles.F, x.loc.N, x.loc.F, x.particles.volume, x.particles.body, x.particles.be);
     if (x.opt.tangent) prefetch_scatter_row(x.act.scatter_entry[std::size_t(c)], x.system.scatter[0]);
   };
   for_each_active_cell_by_colour_looking_ahead(x.act, ahead, [&](Index c) {
@@ -55,8 +60,9 @@ void assemble_displacement(const Args<D>& x) {
       const Mat3& F_n = x.particles.F[p];
       const double Vn = x.particles.volume[p] * F_n.determinant();
       const CornerGradients<NC, D> dN = grid_shape_gradients<NC>(x.grid, x.g, c, x.loc.N[p]);
-      const bool ok = std::visit([&](const auto& m) { return add_displacement_point<NC, D>(m, du, dN, Vn, F_n, x.loc.F[p], r, K_needed); },
-                                 x.materials[std::size_t(x.particles.body[p])].model);
+      const PointHistory history = carries_history ? PointHistory{&F_n, &history_n[p], x.ctx.dt, &history_step[p]} : PointHistory{};
+      const bool ok = visit_point_material(x.materials[std::size_t(x.particles.body[p])].model, history,
+                                           [&](const auto& m) { return add_displacement_point<NC, D>(m, du, dN, Vn, F_n, x.loc.F[p], r, K_needed); });
       if (!ok) return void(x.inverted.fetch_add(1, std::memory_order_relaxed));
     }
     scatter_cell<D * NC>(entry, x.system.scatter[0], x.bc, x.g, x.opt.tangent, r, K, x.system);

@@ -7,6 +7,7 @@
 #include "systems/assemble/elements/particle_newmark_point.hpp"
 #include "systems/assemble/elements/receding_contact.hpp"
 #include "systems/assemble/elements/soft_stiffness.hpp"
+#include "systems/assemble/materials/history_point.hpp"
 #include "systems/assemble/grid_scatter.hpp"
 
 namespace loom {
@@ -70,11 +71,12 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
   const bool receding = c_c > 0.0 && loc.receding.used();
   const double mu = scene.materials[std::size_t(scene.bodies[std::size_t(mpm_body_index(scene))].material)].mu;
   const Index fem_from = act.always_active_from;
+  const bool carries_history = particles.be.used();  // b^e at the particles: the step's return map, b^e kept at the iterate
   // About 64 particles' work per task: cells of a fine body hold tens to thousands of them.
   const Index grain = std::max<Index>(1, 64 * act.n_active_cells() / std::max<Index>(1, particles.X.size()));
   const auto ahead = [&](Index c) {
     loc.prefetch_points_in(c, loc.N, loc.xi, loc.F, loc.receding, particles.mass, particles.volume, particles.F, particles.v, particles.a,
-                           particles.body, bc.particle_body_force);
+                           particles.body, bc.particle_body_force, particles.be);
   };
   for_each_active_cell_by_colour_looking_ahead(act, ahead, [&](Index c) {
     const bool fem_cell = fem_from != kNoIndex && c >= fem_from;
@@ -121,8 +123,9 @@ void assemble_cells(const StepContext& ctx, bool tangent, const std::vector<Body
       pt.F_n = particles.F[p];
       pt.v_n = particles.v[p], pt.a_n = particles.a[p];
       pt.b = bc.particle_body_force.empty() ? Vec2::Zero() : bc.particle_body_force[std::size_t(p)];
-      const bool ok = std::visit([&](const auto& m) { return add_particle_newmark_point<NEN>(m, tn, pt, du, loc.F[p], r, need_K ? &K : nullptr); },
-                                 materials[std::size_t(particles.body[p])].model);
+      const PointHistory history = carries_history ? PointHistory{&pt.F_n, &particles.be[p], ctx.dt, &loc.be[p]} : PointHistory{};
+      const bool ok = visit_point_material(materials[std::size_t(particles.body[p])].model, history,
+                                           [&](const auto& m) { return add_particle_newmark_point<NEN>(m, tn, pt, du, loc.F[p], r, need_K ? &K : nullptr); });
       if (!ok) return void(inverted.fetch_add(1, std::memory_order_relaxed));
     }
     scatter_cell<2 * NEN>(entry, system.scatter[0], bc, g, tangent, r, K, system);

@@ -31,6 +31,7 @@ void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const N
   const Nodes<D>& g = grid_nodes;
   const bool dynamic = particles.v.used() && g.a.used(), mixed = particles.pressure.used() && g.p.used();
   const bool osgs = particles.proj_u.used() && g.proj_u.used();
+  const bool history = particles.be.used() && loc.be.used();
   for_each_index(particles.X.size(), [&](Index p) {
     const Index c = loc.cell[p];
     const Index* corner = grid.cell_nodes(c);
@@ -41,6 +42,7 @@ void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const N
     if constexpr (D == 3) dF = increment_gradient<4, 3>(grid, g, c, N);
     else dF = nc == 4 ? increment_gradient<4, 2>(grid, g, c, N) : increment_gradient<3, 2>(grid, g, c, N);
     particles.F[p] = dF * particles.F[p];
+    if (history) particles.be[p] = loc.be[p];  // the return map of the converged iterate (the last assembly's)
     if (dynamic) {
       const Vec<D> a_new = interpolate<Vec<D>>(nc, corner, N, g.a);
       particles.v[p] += ctx.dt * ((1.0 - kNewmarkGamma) * particles.a[p] + kNewmarkGamma * a_new);

@@ -106,8 +106,10 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
         double kinetic = 0.0, elastic = 0.0, potential = 0.0;
         for (Index i = 0; i < particles.X.size(); ++i) {
           if (particles.v.used()) kinetic += 0.5 * particles.mass[i] * particles.v[i].squaredNorm();
-          elastic += particles.volume[i] *
-                     elastic_energy(materials[std::size_t(particles.body[i])], particles.F[i], mixed, mixed ? particles.pressure[i] : 0.0);
+          const BodyMaterial& m = materials[std::size_t(particles.body[i])];
+          const auto* hp = std::get_if<HenckyPerzyna>(&m.model);
+          elastic += particles.volume[i] * (hp && particles.be.used() ? hp->energy(particles.be[i])  // the stored part of b^e
+                                                                      : elastic_energy(m, particles.F[i], mixed, mixed ? particles.pressure[i] : 0.0));
           if (!bc.particle_body_force.empty()) potential -= particles.mass[i] * bc.particle_body_force[std::size_t(i)].dot(particles.u[i]);
         }
         if constexpr (D == 2)

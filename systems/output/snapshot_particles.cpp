@@ -6,7 +6,13 @@
 
 namespace loom {
 
-bool particle_stress(const BodyMaterial& material, const Mat3& F, bool mixed, double pressure, Mat3& sigma) {
+bool particle_stress(const BodyMaterial& material, const Mat3& F, bool mixed, double pressure, Mat3& sigma, const Mat3* be) {
+  if (const auto* hp = std::get_if<HenckyPerzyna>(&material.model); hp && be) {
+    const double J = F.determinant();
+    if (!(J > 0.0)) return false;
+    sigma = hp->kirchhoff(*be) / J;
+    return true;
+  }
   if (!mixed) return cauchy_stress(material.model, F, sigma);
   Mat3 P_dev;
   if (!std::get<NeoHookeSplit>(material.model).deviatoric_stress(F, P_dev)) return false;
@@ -40,7 +46,8 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
     }
     const Mat3& F = particles.F[p];
     Mat3 sigma = Mat3::Constant(kNaN);
-    particle_stress(materials[std::size_t(particles.body[p])], F, mixed, mixed ? particles.pressure[p] : 0.0, sigma);
+    particle_stress(materials[std::size_t(particles.body[p])], F, mixed, mixed ? particles.pressure[p] : 0.0, sigma,
+                    particles.be.used() ? &particles.be[p] : nullptr);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) stress.values[9 * k + std::size_t(3 * i + j)] = sigma(i, j);
     const double mean = sigma.trace() / 3.0;  // = the particle's p when mixed (tr dev = 0)

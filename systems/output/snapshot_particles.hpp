@@ -27,7 +27,8 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
                    const PointLocations& particle_loc, Frame& frame);
 
 // Cauchy stress of a material point: sigma_dev(F) + p I for the mixed formulation (neo_hooke_split with the
-// particle's pressure), the material's stress otherwise. False if J <= 0.
-bool particle_stress(const BodyMaterial& material, const Mat3& F, bool mixed, double pressure, Mat3& sigma);
+// particle's pressure), tau(b^e) / J for a material with history (be: the particle's b^e), the material's stress
+// of F otherwise. False if J <= 0.
+bool particle_stress(const BodyMaterial& material, const Mat3& F, bool mixed, double pressure, Mat3& sigma, const Mat3* be = nullptr);
 
 }  // namespace loom

@@ -14,6 +14,7 @@ void commit(const StepContext& ctx, const Cells& grid, const Nodes<2>& g, const 
   const ParticleNewmark tn{scene.time.beta, scene.time.gamma, ctx.dt};
   const double c_c = scene.mpm.receding_contact;
   const bool receding = c_c > 0.0 && loc.receding.used();
+  const bool history = particles.be.used() && loc.be.used();
   for_each_index(particles.X.size(), [&](Index p) {
     const Index c = loc.cell[p];
     const PointShape<NEN> s = point_shape<NEN>(grid, g, c, loc, p);
@@ -26,6 +27,7 @@ void commit(const StepContext& ctx, const Cells& grid, const Nodes<2>& g, const 
     particles.u[p] += u_p;
     const NodalVectors<NEN> dN = receding ? particle_trial_gradients<NEN>(s.dN, loc.receding[p], c_c) : s.dN;
     particles.F[p] = deformation_gradient<NEN>(du, dN, particles.F[p]);
+    if (history) particles.be[p] = loc.be[p];  // the return map of the converged iterate (the last assembly's)
   });
 }
 

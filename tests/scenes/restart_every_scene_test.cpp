@@ -31,6 +31,7 @@ const std::map<std::string, Case>& cases() {
       {"bingham_collapse_es", {6, {}}},
       {"bingham_poiseuille", {3, {}}},
       {"bingham_poiseuille_3d", {3, {}}},
+      {"bingham_poiseuille_mpm", {3, {}}},
       {"block_3d", {3, {"body[0].mesh.divisions=[4,4,4]"}}},
       {"bouncing_disk", {6, {"time.end=0.03"}}},
       {"bouncing_disk_mpm_plate", {6, {"time.end=0.03"}}},

@@ -138,6 +138,20 @@ TEST(Restart, MpmContinuesBitForBit) {
                             "cooks-membrane-mpm-dynamic_000008_grid.vtu");
 }
 
+// hencky_perzyna at the particles: b^e is part of the particles' checkpoint. A block that yields under its weight, by
+// both schemes (the particles' b^e changes every step; without it the continued run would restart from b^e = I).
+TEST(Restart, MpmBinghamContinuesBitForBit) {
+  const std::vector<std::string> yielding = {"output.every=5", "time.steps=10", "material[0].tau0=3000", "material[0].viscosity=1e5"};
+  expect_restart_reproduces("mpm_bingham", kSource + "/tests/scenes/mpm_bingham_block.toml", yielding, 4, 10,
+                            "mpm-bingham-block_000010_particles.vtp");
+  std::vector<std::string> particle_newmark = yielding;
+  for (const char* set : {"mpm.scheme=\"particle_newmark\"", "grid.cells=\"quad4\"", "grid.ghost_penalty=0", "time.integrator=\"newmark\"",
+                          "time.beta=0.49", "time.gamma=0.9"})
+    particle_newmark.push_back(set);
+  expect_restart_reproduces("mpm_bingham_particle_newmark", kSource + "/tests/scenes/mpm_bingham_block.toml", particle_newmark, 4, 10,
+                            "mpm-bingham-block_000010_particles.vtp");
+}
+
 // SIGINT stops the run after the step in progress: exit 130, run.json says "interrupted" with the last
 // completed step, timings.json is written, no temporary file is left, and the checkpoint it writes
 // continues to the very probes of an uninterrupted run. Where the signal lands does not matter.

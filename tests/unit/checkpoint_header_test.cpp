@@ -1,6 +1,7 @@
 // engine/methods/recipes/run_output: the part of a checkpoint that is not a store. It round-trips, a checkpoint
 // written before it held the probes and the stop window still continues (they start empty), and a continued run
-// whose time.stop_when watches another probe starts its window afresh.
+// whose time.stop_when watches another probe starts its window afresh. A store's column that an older checkpoint
+// does not name (particles/be) restores as unused, and is refused where the scene uses it.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "engine/io/checkpoint.hpp"
 #include "engine/methods/recipes/run_output.hpp"
+#include "engine/store/points.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace loom {
@@ -79,6 +81,30 @@ TEST(CheckpointHeader, AnOlderCheckpointWithoutProbesContinues) {
   EXPECT_EQ(h.newton_iterations, 17);
   EXPECT_TRUE(h.probe_values.empty());
   EXPECT_TRUE(h.stop_history.empty());
+}
+
+// Particles as loom wrote them before they could carry b^e: every column but "be".
+TEST(CheckpointStore, AColumnAnOlderCheckpointLacksRestoresAsUnused) {
+  testing::TempDir dir("checkpoint_store_older");
+  Points<2> written;
+  written.X.use(), written.u.use();
+  written.resize(3);
+  written.u[1] = Vec2(0.5, -0.25);
+  CheckpointWriter w;
+  written.for_each_column([&](const char* name, const auto& c) {
+    if (std::string(name) != "be") w.column(std::string("particles/") + name, c);
+  });
+  w.write(dir.file("checkpoint.loom"));
+  const CheckpointReader r(dir.file("checkpoint.loom"));
+  Points<2> plain;
+  plain.X.use(), plain.u.use();
+  r.store("particles", plain);
+  EXPECT_EQ(plain.u.size(), 3);
+  EXPECT_EQ(plain.u[1], Vec2(0.5, -0.25));
+  EXPECT_FALSE(plain.be.used());
+  Points<2> with_history = plain;
+  with_history.be.use();
+  EXPECT_THROW(r.store("particles", with_history), InputError);
 }
 
 }  // namespace

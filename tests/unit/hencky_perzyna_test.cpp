@@ -2,7 +2,9 @@
 // recurrences that hold exactly at finite strain (relaxation at fixed deformation, the rate-independent cap,
 // isochoric flow), the simple-shear recurrence of small-strain Bingham viscoplasticity (to O(tau/G), and that
 // order checked), Hencky's closed form in a plane-strain stretch, objectivity, and every tangent against
-// central finite differences of P = tau f^-T at random elastic and plastic states.
+// central finite differences of P = tau f^-T at random elastic and plastic states. The step at an MPM particle
+// (history_point.hpp: F total, F_n and b^e_n fixed) against the same differences of its P(F), and its elastic
+// limit against Hencky's P(F).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +12,7 @@
 
 #include "systems/assemble/materials/first_piola.hpp"
 #include "systems/assemble/materials/hencky_perzyna.hpp"
+#include "systems/assemble/materials/history_point.hpp"
 
 namespace loom {
 namespace {
@@ -200,6 +203,80 @@ TEST(FirstPiola, PressurePartMatchesFiniteDifferences) {
     }
   EXPECT_LT((P - P_of(F)).norm(), 1e-14);
   EXPECT_LT((A - fd).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+// The step at a particle, P(F) = tau(F F_n^-1; b^e_n) F^-T: its tangent dP/dF against central differences of P, at
+// elastic and plastic states with F_n and b^e_n away from the identity.
+TEST(HenckyPerzynaStep, TangentOfTotalGradientMatchesFiniteDifferences) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  const HenckyPerzyna m{7.0, 3.0, 0.4, 0.5};
+  int plastic = 0, checked = 0;
+  for (int s = 0; s < 8; ++s) {
+    Mat3 F_n = Mat3::Identity(), f = Mat3::Identity(), X = Mat3::Zero();
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) F_n(i, j) += 0.2 * normal(rng), f(i, j) += 0.2 * normal(rng), X(i, j) = 0.2 * normal(rng);
+    if (F_n.determinant() < 0.3 || f.determinant() < 0.3) continue;
+    const Mat3 be_n = Mat3::Identity() + X * X.transpose();
+    const Mat3 F = f * F_n;
+    const HenckyPerzynaStep step{m, F_n.inverse(), be_n, 0.1};
+    Mat3 P, P_only;
+    Mat9 A, fd;
+    ASSERT_TRUE(step.stress_tangent(F, P, A));
+    const Mat3 be = step.be;
+    ASSERT_TRUE(step.stress(F, P_only));
+    EXPECT_LT((P - P_only).norm(), 1e-14 * P.norm());
+    EXPECT_LT((be - step.be).norm(), 1e-15);
+    HistoryResponse r;
+    ASSERT_TRUE(m.update(f, be_n, 0.1, false, false, r));
+    plastic += r.plastic;
+    const double h = 1e-6;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        Mat3 Pp, Pm;
+        ASSERT_TRUE(step.stress(F + h * unit(k, l), Pp));
+        ASSERT_TRUE(step.stress(F - h * unit(k, l), Pm));
+        const Mat3 dP = (Pp - Pm) / (2 * h);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) fd(ij(i, j), ij(k, l)) = dP(i, j);
+      }
+    EXPECT_LT((A - fd).cwiseAbs().maxCoeff(), 1e-7) << "state " << s;
+    ++checked;
+  }
+  EXPECT_GE(checked, 5);
+  EXPECT_GE(plastic, 3);
+}
+
+// Without yield (tau0 infinite) the history is elastic: b^e = F F^T whatever the steps, so the step from F_n with
+// b^e_n = F_n F_n^T gives Hencky's P(F) of the hyperelastic interface, and its b^e is F F^T, to round-off.
+TEST(HenckyPerzynaStep, ElasticHistoryIsHenckyOfTotalGradient) {
+  const HenckyPerzyna m{7.0, 3.0};
+  Mat3 F_n = Mat3::Identity(), F = Mat3::Identity();
+  F_n.topLeftCorner<2, 2>() << 1.1, 0.2, -0.05, 0.95;
+  F.topLeftCorner<2, 2>() << 1.2, 0.3, -0.1, 0.9;
+  const HenckyPerzynaStep step{m, F_n.inverse(), F_n * F_n.transpose(), 0.1};
+  Mat3 P, P_hencky;
+  ASSERT_TRUE(step.stress(F, P));
+  ASSERT_TRUE(m.stress(F, P_hencky));
+  EXPECT_LT((P - P_hencky).norm(), 1e-14 * P.norm());
+  EXPECT_LT((step.be - F * F.transpose()).norm(), 1e-14);
+  EXPECT_LT((m.kirchhoff(step.be) - P * F.transpose()).norm(), 1e-14 * P.norm());  // the stress written for output
+}
+
+// visit_point_material: a point without history sees the model itself; with history, the step, whose b^e it keeps.
+TEST(HenckyPerzynaStep, PointMaterialVisitsTheStepOnlyWithHistory) {
+  const Material material = HenckyPerzyna{7.0, 3.0, 0.4, 0.5};
+  Mat3 F_n = Mat3::Identity(), F = Mat3::Identity(), be_n = Mat3::Identity(), be = Mat3::Zero();
+  F(0, 1) = 0.5;
+  Mat3 P_plain, P_step;
+  EXPECT_TRUE(visit_point_material(material, PointHistory{}, [&](const auto& m) { return m.stress(F, P_plain); }));
+  EXPECT_TRUE(visit_point_material(material, PointHistory{&F_n, &be_n, 0.1, &be}, [&](const auto& m) { return m.stress(F, P_step); }));
+  EXPECT_GT(be.norm(), 1.0);  // written (it was zero)
+  EXPECT_GT((P_plain - P_step).norm(), 1e-3);  // the plain model is elastic Hencky, the step yields
+  HistoryResponse r;
+  ASSERT_TRUE(std::get<HenckyPerzyna>(material).update(F, be_n, 0.1, false, false, r));
+  EXPECT_TRUE(r.plastic);
+  EXPECT_LT((be - r.be).norm(), 1e-15);
 }
 
 }  // namespace

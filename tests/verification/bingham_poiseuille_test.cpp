@@ -8,6 +8,9 @@
 // for 0.5 %). Plug: rows of the mesh whose shear rate is below 0.1 1/s (200 1/s at the wall, 5e-4 1/s of
 // elastic shear inside the plug, 1 1/s in a whole row just outside it); the
 // detected half-width must be within one element (1 mm) of y0.
+// The same flow run by the material point method (scenes/bingham_poiseuille_mpm.toml: b^e carried by each particle,
+// elements p1 on the grid): every particle's velocity u / dt against the closed form at its height within 0.5 % of
+// v_plug, the particles of the plug within 0.1 %, and the walls' reactions carrying the body force.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,6 +66,42 @@ TEST_P(BinghamPoiseuille, VelocityProfileAndPlugMatchTheClosedForm) {
 }
 
 INSTANTIATE_TEST_SUITE_P(YieldStresses, BinghamPoiseuille, ::testing::Values(20.0, 50.0, 80.0));
+
+class BinghamPoiseuilleMpm : public ::testing::TestWithParam<double> {};
+
+TEST_P(BinghamPoiseuilleMpm, ParticleVelocitiesMatchTheClosedForm) {
+  const double tau0 = GetParam();
+  const SceneSpec scene = load_scene(verification::scene_path("bingham_poiseuille_mpm.toml"),
+                                     {"material[0].tau0=" + std::to_string(tau0), "output.every=0"});
+  auto run = testing::make_mpm_run(scene);
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const Points<2>& particles = run->model().particles;
+  const double v_plug = exact_velocity(0.0, tau0), y0 = tau0 / kFx;
+  double worst = 0.0, worst_plug = 0.0;
+  int in_plug = 0, yielded_rows = 0;
+  for (Index p = 0; p < particles.X.size(); ++p) {
+    const double y = particles.X[p].y(), v = particles.u[p].x() / kDt;
+    EXPECT_NEAR(particles.u[p].y(), 0.0, 1e-15);
+    worst = std::max(worst, std::abs(v - exact_velocity(y, tau0)) / v_plug);
+    if (std::abs(y) < y0) worst_plug = std::max(worst_plug, std::abs(v / v_plug - 1)), ++in_plug;
+    // The flowing particles carry a plastic b^e: det b^e = J^2 (isochoric flow), b^e != F F^T.
+    EXPECT_NEAR(particles.be[p].determinant(), std::pow(particles.F[p].determinant(), 2), 1e-12);
+    yielded_rows += (particles.be[p] - particles.F[p] * particles.F[p].transpose()).norm() > 1e-9;
+  }
+  const double wall_x = run->probe_values()[2], load = 1000.0 * 20.0 * 0.004 * 0.2;
+  std::printf("[poiseuille mpm] tau0 %g: worst particle %.3f %% of v_plug, plug (%d particles) %.4f %%, %d of %lld particles yielded, "
+              "wall force %.6f of %.6f, %lld Newton iterations\n",
+              tau0, 100 * worst, in_plug, 100 * worst_plug, yielded_rows, (long long)particles.X.size(), -wall_x, 0.5 * load,
+              summary.newton_iterations);
+  EXPECT_LT(worst, 5e-3);
+  ASSERT_GT(in_plug, 0);
+  EXPECT_LT(worst_plug, 1e-3);
+  EXPECT_GT(yielded_rows, particles.X.size() / 2);  // the flow outside the plug is plastic
+  EXPECT_NEAR(-wall_x, 0.5 * load, 1e-8 * load);  // each wall carries half of rho F_x V (the flow is symmetric)
+}
+
+INSTANTIATE_TEST_SUITE_P(YieldStresses, BinghamPoiseuilleMpm, ::testing::Values(20.0, 50.0, 80.0));
 
 }  // namespace
 }  // namespace loom

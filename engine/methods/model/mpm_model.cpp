@@ -1,5 +1,6 @@
 #include "engine/methods/model/mpm_model.hpp"
 
+#include <algorithm>
 #include <map>
 #include <sstream>
 
@@ -130,6 +131,11 @@ void MpmModelT<D>::set_columns(const BodySpec& body) {
   particles.pressure.use(mixed);
   particles.proj_u.use(osgs), particles.proj_p.use(osgs);
   particle_loc.F.use();
+  // Materials with history carry b^e at the particles (converged) and at their locations (the iterate's).
+  const bool history = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const BodySpec& b) {
+    return b.element == Formulation::p1 && scene.materials[std::size_t(b.material)].model == MaterialModel::hencky_perzyna;
+  });
+  particles.be.use(history), particle_loc.be.use(history);
   particle_loc.xi.use(scene.grid.quad9);
   particle_loc.N.use(!scene.grid.quad9);
   particle_loc.receding.use(particle_newmark && scene.mpm.receding_contact > 0.0);

@@ -54,6 +54,13 @@ struct HenckyPerzyna {
     return G * (eps - Vec3::Constant(theta / 3.0)).squaredNorm() + 0.5 * K * theta * theta;
   }
 
+  // The Kirchhoff stress of an elastic state b^e (eq 19's derivative): tau = sum_A (2G dev eps_A + K theta) n_A (x) n_A.
+  Mat3 kirchhoff(const Mat3& be) const {
+    HistoryResponse r;
+    if (!elastic_update(Mat3::Identity(), be, false, r)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+    return r.tau;
+  }
+
   // The return map from the incremental deformation f = F F_n^-1 and the converged b^e_n over dt. false if
   // det f <= 0 (the state does not exist).
   bool update(const Mat3& f, const Mat3& be_n, double dt, bool deviatoric, bool tangent, HistoryResponse& out) const {
@@ -107,10 +114,11 @@ struct HenckyPerzyna {
   }
 
  private:
-  bool elastic(const Mat3& F, bool tangent, HistoryResponse& r) const {
+  bool elastic(const Mat3& F, bool tangent, HistoryResponse& r) const { return elastic_update(F, Mat3::Identity(), tangent, r); }
+  bool elastic_update(const Mat3& f, const Mat3& be_n, bool tangent, HistoryResponse& r) const {
     HenckyPerzyna e = *this;
     e.tau0 = std::numeric_limits<double>::infinity();
-    return e.update(F, Mat3::Identity(), 1.0, false, tangent, r);
+    return e.update(f, be_n, 1.0, false, tangent, r);
   }
 
   static Mat9 spatial_tangent(const Mat3& n, const Vec3& w, const Vec3& t, const Mat3& a) {

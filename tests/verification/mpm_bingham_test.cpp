@@ -1,0 +1,97 @@
+// hencky_perzyna at the material points of method mpm (b^e carried by each particle, history_point.hpp), on the
+// block of tests/scenes/mpm_bingham_block.toml (1 m x 1 m, rho = 2000, g = 9.81, on a stick ground):
+//  - the grid scheme, static: the ground carries rho g V to round-off (1e-10), no particle yields (b^e = F F^T to 1e-9
+//    in every step, the path independence of elastic Hencky), and the block comes to rest (a fourth step moves it by
+//    1e-7 of its settlement);
+//  - yielding (tau0 = 3000 Pa against about 1e4 Pa of deviatoric stress, mu = 1e5 Pa s so that a static step creeps):
+//    the flow is isochoric (det b^e = J^2 at every particle), part of the block flows, and the ground still carries
+//    the weight;
+//  - Newmark at the particles (quad4 grid), steps long against the block's period and gamma = 0.9 so that the
+//    sudden load's oscillation is damped out: the block comes to the same rest, the ground carrying rho g V to 1e-8.
+// The plane Poiseuille flow run by mpm is in bingham_poiseuille_test.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "engine/scene/scene_loader.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace loom {
+namespace {
+
+const std::string kScene = std::string(LOOM_SOURCE_DIR) + "/tests/scenes/mpm_bingham_block.toml";
+constexpr double kWeight = 2000.0 * 9.81 * 1.0;
+
+struct Block {
+  RunSummary summary;
+  Points<2> particles;
+  double ground_force = 0.0;
+};
+
+Block run_block(std::vector<std::string> sets) {
+  sets.push_back("output.every=0");
+  const SceneSpec scene = load_scene(kScene, sets);
+  auto run = testing::make_mpm_run(scene);
+  Block b;
+  b.summary = run->run();
+  b.particles = run->model().particles;
+  b.ground_force = run->probe_values()[0];
+  return b;
+}
+
+// Particles whose b^e is not F F^T: they have flowed.
+int yielded(const Points<2>& particles) {
+  int n = 0;
+  for (Index p = 0; p < particles.X.size(); ++p) n += (particles.be[p] - particles.F[p] * particles.F[p].transpose()).norm() > 1e-9;
+  return n;
+}
+
+TEST(MpmBingham, RestingBlockCarriesItsWeightWithoutYielding) {
+  const Block three = run_block({"time.steps=3"}), four = run_block({"time.steps=4"});
+  ASSERT_TRUE(three.summary.converged) << three.summary.failure;
+  ASSERT_TRUE(four.summary.converged) << four.summary.failure;
+  EXPECT_NEAR(three.ground_force, kWeight, 1e-10 * kWeight);
+  EXPECT_NEAR(four.ground_force, kWeight, 1e-10 * kWeight);
+  EXPECT_EQ(yielded(four.particles), 0);
+  // The block has come to rest: the second step still moves it (its particles, now at x_n, are integrated again on
+  // the undeformed grid: 1.4 % more settlement at the top, as with neo_hooke), the later ones by round-off.
+  ASSERT_EQ(three.particles.X.size(), four.particles.X.size());
+  double u_max = 0.0, change = 0.0, J_min = 1.0;
+  for (Index p = 0; p < four.particles.X.size(); ++p) {
+    u_max = std::max(u_max, four.particles.u[p].norm());
+    change = std::max(change, (four.particles.u[p] - three.particles.u[p]).norm());
+    J_min = std::min(J_min, four.particles.F[p].determinant());
+  }
+  std::printf("[mpm bingham] resting block: largest displacement %.6e m, changed by %.2e m in the fourth step\n", u_max, change);
+  EXPECT_LT(change, 1e-7 * u_max);
+  EXPECT_LT(J_min, 1.0 - 1e-4);  // it did deform: the weight compresses the block
+}
+
+TEST(MpmBingham, YieldingBlockFlowsIsochorically) {
+  const Block b = run_block({"material[0].tau0=3000", "material[0].viscosity=1e5", "time.steps=10", "solver.line_search=true"});
+  ASSERT_TRUE(b.summary.converged) << b.summary.failure;
+  const Points<2>& particles = b.particles;
+  for (Index p = 0; p < particles.X.size(); ++p) {
+    const double J = particles.F[p].determinant();
+    EXPECT_NEAR(particles.be[p].determinant(), J * J, 1e-12) << p;
+  }
+  const int flowed = yielded(particles);
+  std::printf("[mpm bingham] yielding block: %d of %lld particles flowed, ground force %.10f of %.10f\n", flowed,
+              (long long)particles.X.size(), b.ground_force, kWeight);
+  EXPECT_GT(flowed, particles.X.size() / 10);
+  EXPECT_LT(flowed, particles.X.size());
+  EXPECT_NEAR(b.ground_force, kWeight, 1e-10 * kWeight);
+}
+
+TEST(MpmBingham, ParticleNewmarkBlockComesToRest) {
+  const Block b = run_block({"mpm.scheme=\"particle_newmark\"", "grid.cells=\"quad4\"", "grid.ghost_penalty=0", "time.integrator=\"newmark\"",
+                             "time.beta=0.49", "time.gamma=0.9", "time.dt=100", "time.steps=60"});
+  ASSERT_TRUE(b.summary.converged) << b.summary.failure;
+  std::printf("[mpm bingham] particle Newmark: ground force %.10f of %.10f\n", b.ground_force, kWeight);
+  EXPECT_NEAR(b.ground_force, kWeight, 1e-8 * kWeight);
+  EXPECT_EQ(yielded(b.particles), 0);
+}
+
+}  // namespace
+}  // namespace loom
