@@ -22,6 +22,10 @@ struct QuadPoints {
   // Converged Cauchy stress, kept where the stress is not a function of F (history materials; seed 001's
   // triangles carry the mean of their smoothing domains' stress). Unused otherwise.
   Column<Mat3> stress_n;
+  // Materials with history at the points of p1, tri6, quad9 and tet10 (hencky_perzyna on a fixed mesh): the converged
+  // elastic left Cauchy-Green b^e_n and the iterate's b^e (committed with F).
+  Column<Mat3> be_n;
+  Column<Mat3> be;
 
   QuadPoints() {
     weight_n.use();
@@ -38,6 +42,8 @@ struct QuadPoints {
     F_n.resize(n, Mat3::Identity());
     F.resize(n, Mat3::Identity());
     stress_n.resize(n, Mat3::Zero());
+    be_n.resize(n, Mat3::Identity());
+    be.resize(n, Mat3::Identity());
   }
 
   double* grad(Index q) { return dN.data() + static_cast<std::size_t>(q) * nodes_per_cell * D; }
@@ -45,7 +51,7 @@ struct QuadPoints {
 
   template <class Visit>
   void for_each_column(Visit&& f) {
-    f("weight_n", weight_n), f("dN", dN), f("F_n", F_n), f("F", F), f("stress_n", stress_n);
+    f("weight_n", weight_n), f("dN", dN), f("F_n", F_n), f("F", F), f("stress_n", stress_n), f("be_n", be_n), f("be", be);
   }
   template <class Visit>
   void for_each_column(Visit&& f) const {

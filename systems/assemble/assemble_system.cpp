@@ -11,6 +11,7 @@
 #include "systems/assemble/elements/p1_cell.hpp"
 #include "systems/assemble/elements/p1p1_uphi_cell.hpp"
 #include "systems/assemble/elements/isoparametric_cell.hpp"
+#include "systems/assemble/materials/history_point.hpp"
 #include "systems/update/time_integrator.hpp"
 
 namespace loom {
@@ -64,7 +65,14 @@ struct BlockArgs {
   const CellScatter& scatter;
   LinearSystem& system;
   std::atomic<Index>& inverted;
+  double dt;  // the step, for the return map of materials with history
 };
+
+// The history of point q of a block that carries one (be_n used), or none.
+template <int D>
+PointHistory point_history(const BlockArgs<D>& b, const Mat3& F_n, Index q) {
+  return b.quad.be_n.used() ? PointHistory{&F_n, &b.quad.be_n[q], b.dt, &b.quad.be[q]} : PointHistory{};
+}
 
 void assemble_p1_block(const BlockArgs<2>& b) {
   const auto map = displacement_map<3>(b.system.dofs.per_node);
@@ -78,7 +86,8 @@ void assemble_p1_block(const BlockArgs<2>& b) {
     P1Vector r = P1Vector::Zero();
     P1Matrix K = P1Matrix::Zero();
     const BodyMaterial& material = b.materials[std::size_t(b.cells.body[c])];
-    const bool ok = std::visit([&](const auto& m) { return p1_internal(m, cell, b.quad.F[c], r, need_K ? &K : nullptr); }, material.model);
+    const bool ok = visit_point_material(material.model, point_history(b, b.quad.F_n[c], c),
+                                         [&](const auto& m) { return p1_internal(m, cell, b.quad.F[c], r, need_K ? &K : nullptr); });
     if (!ok) return void(b.inverted.fetch_add(1, std::memory_order_relaxed));
     if (b.inertia.on && b.inertia.consistent)
       add_consistent_inertia<3, 6>(b.nodes, b.cells, c, b.inertia, material.density, tri3_consistent_mass(cell.volume0), u_index, r,
@@ -108,7 +117,15 @@ void assemble_isoparametric_block(const BlockArgs<D>& b) {
     ElementMatrix<NEN, D> K = ElementMatrix<NEN, D>::Zero();
     const BodyMaterial& material = b.materials[std::size_t(b.cells.body[c])];
     Mat3* F = &b.quad.F[NQ * c];
-    const bool ok = std::visit([&](const auto& m) { return isoparametric_internal(m, cell, F, r, need_K ? &K : nullptr); }, material.model);
+    bool ok = true;
+    if (b.quad.be_n.used()) {  // a history per point: the material's step at each
+      for (int q = 0; q < NQ && ok; ++q)
+        ok = visit_point_material(material.model, point_history(b, cell.F_n[q], NQ * c + q), [&](const auto& m) {
+          return add_displacement_point<NEN, D>(m, cell.du, cell.dN[q], cell.dV_n[q], cell.F_n[q], F[q], r, need_K ? &K : nullptr);
+        });
+    } else {
+      ok = std::visit([&](const auto& m) { return isoparametric_internal(m, cell, F, r, need_K ? &K : nullptr); }, material.model);
+    }
     if (!ok) return void(b.inverted.fetch_add(1, std::memory_order_relaxed));
     if (b.inertia.on && b.inertia.consistent) {
       auto* K_inertia = need_K ? &K : nullptr;
@@ -231,7 +248,7 @@ AssemblyResult assemble_system(const StepContext& ctx, AssemblyMode mode, const 
 
   std::atomic<Index> inverted{0};
   for (std::size_t k = 0; k < cells.size(); ++k) {
-    const BlockArgs<D> args{tangent, inertia, materials, nodes, cells[k], bc, quad[k], system.scatter[k], system, inverted};
+    const BlockArgs<D> args{tangent, inertia, materials, nodes, cells[k], bc, quad[k], system.scatter[k], system, inverted, ctx.dt};
     assemble_block(args, cells[k], tangent, materials, nodes, bc, system.scatter[k], system, inverted);
   }
   if (domains)

@@ -41,7 +41,11 @@ void commit_step(const StepContext& ctx, const std::vector<Cells>& cells, Nodes<
     if (nodes.phi.used()) nodes.phi_n[i] = nodes.phi[i];
     if (nodes.p_n.used()) nodes.p_n[i] = nodes.p[i];
   });
-  for (auto& q : quad) for_each_index(q.size(), [&](Index p) { q.F_n[p] = q.F[p]; });
+  for (auto& q : quad)
+    for_each_index(q.size(), [&](Index p) {
+      q.F_n[p] = q.F[p];
+      if (q.be_n.used()) q.be_n[p] = q.be[p];  // the return map of the converged iterate (the last assembly's)
+    });
   const Index bad = compute_geometry(nodes, cells, quad);
   // Newton accepted the state only if every cell had J > 0, so this is a contract, not user input.
   LOOM_CHECK(bad == 0, RunError, bad << " cells are inverted in the converged configuration of step " << ctx.step);

@@ -152,6 +152,11 @@ TEST(Restart, MpmBinghamContinuesBitForBit) {
                             "mpm-bingham-block_000010_particles.vtp");
 }
 
+// ... and at the quadrature points of fem's tri6 (QuadPoints::be_n in the checkpoint).
+TEST(Restart, FemBinghamContinuesBitForBit) {
+  expect_restart_reproduces("fem_bingham", kSource + "/tests/scenes/fem_bingham_block.toml", {}, 4, 10, "fem-bingham-block_000010.vtu");
+}
+
 // SIGINT stops the run after the step in progress: exit 130, run.json says "interrupted" with the last
 // completed step, timings.json is written, no temporary file is left, and the checkpoint it writes
 // continues to the very probes of an uninterrupted run. Where the signal lands does not matter.

@@ -11,12 +11,18 @@
 // The same flow run by the material point method (scenes/bingham_poiseuille_mpm.toml: b^e carried by each particle,
 // elements p1 on the grid): every particle's velocity u / dt against the closed form at its height within 0.5 % of
 // v_plug, the particles of the plug within 0.1 %, and the walls' reactions carrying the body force.
+// And on the displacement elements p1 and tri6 of method fem (b^e at their quadrature points): every node within
+// 0.5 % of v_plug, the centre within 0.1 %.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <tuple>
 
 #include "engine/scene/scene_loader.hpp"
+#include "tests/support/test_support.hpp"
 #include "tests/verification/verification_support.hpp"
 
 namespace loom {
@@ -102,6 +108,45 @@ TEST_P(BinghamPoiseuilleMpm, ParticleVelocitiesMatchTheClosedForm) {
 }
 
 INSTANTIATE_TEST_SUITE_P(YieldStresses, BinghamPoiseuilleMpm, ::testing::Values(20.0, 50.0, 80.0));
+
+// The es_up scene with another element: its alpha_stab line dropped.
+std::string scene_with_element(const std::string& element) {
+  std::ifstream in(verification::scene_path("bingham_poiseuille.toml"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string stab = "alpha_stab = 200.0\n", es = "element = \"es_up\"";
+  EXPECT_NE(text.find(stab), std::string::npos);
+  EXPECT_NE(text.find(es), std::string::npos);
+  text.erase(text.find(stab), stab.size());
+  text.replace(text.find(es), es.size(), "element = \"" + element + "\"");
+  return text;
+}
+
+class BinghamPoiseuilleFem : public ::testing::TestWithParam<std::tuple<std::string, double>> {};
+
+TEST_P(BinghamPoiseuilleFem, NodalVelocitiesMatchTheClosedForm) {
+  const auto& [element, tau0] = GetParam();
+  const SceneSpec scene = testing::scene_from_text(scene_with_element(element), {"material[0].tau0=" + std::to_string(tau0), "output.every=0"});
+  auto run = testing::make_fem_run(scene);
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const Nodes<2>& nodes = run->nodes();
+  const double v_plug = exact_velocity(0.0, tau0);
+  double worst = 0.0, v_centre = 0.0;
+  for (Index i = 0; i < nodes.size(); ++i) {
+    const double y = nodes.X[i].y(), v = nodes.u_n[i].x() / kDt;
+    worst = std::max(worst, std::abs(v - exact_velocity(y, tau0)) / v_plug);
+    if (std::abs(y) < 1e-12) v_centre = v;
+  }
+  std::printf("[poiseuille %s] tau0 %g: v_centre %.5f (exact %.5f, %.3f %%), worst node %.3f %% of v_plug, %lld Newton iterations\n",
+              element.c_str(), tau0, v_centre, v_plug, 100 * std::abs(v_centre / v_plug - 1), 100 * worst, summary.newton_iterations);
+  EXPECT_LT(worst, 5e-3);
+  EXPECT_NEAR(v_centre, v_plug, 1e-3 * v_plug);
+}
+
+INSTANTIATE_TEST_SUITE_P(Elements, BinghamPoiseuilleFem,
+                         ::testing::Combine(::testing::Values("p1", "tri6"), ::testing::Values(20.0, 50.0, 80.0)));
 
 }  // namespace
 }  // namespace loom

@@ -37,6 +37,24 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
   return LinearSolverKind::umfpack;
 }
 
+// Materials with history (hencky_perzyna) at the points of the displacement elements p1, tri6 (tet10) and quad9 of
+// method fem: b^e_n and the iterate's b^e per point. (The smoothed elements carry it on their domains; p1p1_uphi
+// takes neo_hooke only; pfem's remesh maps F_n to new points but not b^e, so there elastic Hencky stays a function
+// of F and a yield stress is refused.)
+template <int D>
+void use_history_columns(const SceneSpec& scene, const std::vector<Cells>& cells, std::vector<QuadPoints<D>>& quad) {
+  if (scene.scene.method != Method::fem) return;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const Formulation f = cells[k].formulation;
+    if (f != Formulation::p1 && f != Formulation::tri6 && f != Formulation::quad9) continue;
+    const bool history = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const BodySpec& b) {
+      return b.element == f && scene.materials[std::size_t(b.material)].model == MaterialModel::hencky_perzyna;
+    });
+    quad[k].be_n.use(history), quad[k].be.use(history);
+    quad[k].resize(quad[k].size());  // b^e = I in the reference state
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -65,6 +83,7 @@ FemModelT<D>::FemModelT(const SceneSpec& spec) : scene(spec) {
   else node_body = build_mesh_3d(scene, nodes, cells, &regions);
   materials = body_materials(scene);
   allocate_quad_points(cells, quad);
+  use_history_columns(scene, cells, quad);
   if (compute_geometry(nodes, cells, quad) != 0) {
     // compute_geometry does not say which body: with one body, point at its mesh.
     std::ostringstream where;

@@ -64,11 +64,17 @@ inline bool cauchy_stress(const Material& material, const Mat3& F, Mat3& sigma) 
 }
 
 // Cauchy stress of quadrature point q: stored at commit by formulations whose materials carry history
-// (stress_n), recomputed from F_n otherwise.
+// (stress_n), that of b^e_n where the point carries it (tau(b^e) / J), recomputed from F_n otherwise.
 template <int D>
 inline bool point_stress(const BodyMaterial& material, const QuadPoints<D>& quad, Index q, Mat3& sigma) {
   if (quad.stress_n.used()) {
     sigma = quad.stress_n[q];
+    return true;
+  }
+  if (const auto* hp = std::get_if<HenckyPerzyna>(&material.model); hp && quad.be_n.used()) {
+    const double J = quad.F_n[q].determinant();
+    if (!(J > 0.0)) return false;
+    sigma = hp->kirchhoff(quad.be_n[q]) / J;
     return true;
   }
   return cauchy_stress(material.model, quad.F_n[q], sigma);

@@ -1,5 +1,6 @@
-// hencky_perzyna at the material points of method mpm (b^e carried by each particle, history_point.hpp), on the
-// block of tests/scenes/mpm_bingham_block.toml (1 m x 1 m, rho = 2000, g = 9.81, on a stick ground):
+// hencky_perzyna at points that carry its history b^e from step to step (history_point.hpp): the material points of
+// method mpm and the quadrature points of fem's displacement elements. MPM, on the block of
+// tests/scenes/mpm_bingham_block.toml (1 m x 1 m, rho = 2000, g = 9.81, on a stick ground):
 //  - the grid scheme, static: the ground carries rho g V to round-off (1e-10), no particle yields (b^e = F F^T to 1e-9
 //    in every step, the path independence of elastic Hencky), and the block comes to rest (a fourth step moves it by
 //    1e-7 of its settlement);
@@ -8,7 +9,9 @@
 //    the weight;
 //  - Newmark at the particles (quad4 grid), steps long against the block's period and gamma = 0.9 so that the
 //    sudden load's oscillation is damped out: the block comes to the same rest, the ground carrying rho g V to 1e-8.
-// The plane Poiseuille flow run by mpm is in bingham_poiseuille_test.cpp.
+// fem, tri6 (tests/scenes/fem_bingham_block.toml, the yielding block): isochoric flow at every point, part of the
+// block flowing, the base carrying the weight.
+// The plane Poiseuille flow run by mpm, p1 and tri6 is in bingham_poiseuille_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -91,6 +94,27 @@ TEST(MpmBingham, ParticleNewmarkBlockComesToRest) {
   std::printf("[mpm bingham] particle Newmark: ground force %.10f of %.10f\n", b.ground_force, kWeight);
   EXPECT_NEAR(b.ground_force, kWeight, 1e-8 * kWeight);
   EXPECT_EQ(yielded(b.particles), 0);
+}
+
+TEST(FemBingham, YieldingBlockFlowsIsochoricallyAtTheQuadraturePoints) {
+  const SceneSpec scene = load_scene(std::string(LOOM_SOURCE_DIR) + "/tests/scenes/fem_bingham_block.toml", {"output.every=0"});
+  auto run = testing::make_fem_run(scene);
+  const RunSummary summary = run->run();
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  const QuadPoints<2>& q = run->model().quad[0];
+  ASSERT_TRUE(q.be_n.used());
+  int flowed = 0;
+  for (Index p = 0; p < q.size(); ++p) {
+    const double J = q.F_n[p].determinant();
+    EXPECT_NEAR(q.be_n[p].determinant(), J * J, 1e-12) << p;
+    flowed += (q.be_n[p] - q.F_n[p] * q.F_n[p].transpose()).norm() > 1e-9;
+  }
+  const double base = run->probe_values()[0];
+  std::printf("[fem bingham] yielding tri6 block: %d of %lld points flowed, base force %.10f of %.10f\n", flowed, (long long)q.size(), base,
+              kWeight);
+  EXPECT_GT(flowed, q.size() / 10);
+  EXPECT_LT(flowed, q.size());
+  EXPECT_NEAR(base, kWeight, 1e-10 * kWeight);
 }
 
 }  // namespace
