@@ -29,6 +29,7 @@ struct Case {
 const std::map<std::string, Case>& cases() {
   static const std::map<std::string, Case> c = {
       {"bingham_collapse_es", {6, {}}},
+      {"bingham_collapse_mpm", {6, {}}},
       {"bingham_poiseuille", {3, {}}},
       {"bingham_poiseuille_3d", {3, {}}},
       {"bingham_poiseuille_mpm", {3, {}}},

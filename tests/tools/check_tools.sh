@@ -2,8 +2,8 @@
 # Smoke test of tools/study and tools/render (ctest label scene): a two-case study into a temporary
 # directory, then checks that the CSV has its columns and rows, that every plot and the picture are PNG
 # files, that tools/profile_folded reads a --profile run, that tools/arrest_balance.py reads walls as loom
-# does, that tools/first_row.py measures a mesh's first row and that tools/probe_history.py samples and dates
-# arrests. Usage: check_tools.sh LOOM
+# does, that tools/first_row.py measures a mesh's first row, that tools/probe_history.py samples and dates
+# arrests and that tools/compare_studies.py plots two studies on one axes. Usage: check_tools.sh LOOM
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 loom=$1
@@ -19,6 +19,10 @@ awk -F, 'NR > 1 && ($16 > 1e-10 || $9 != 1) { bad = 1 } END { exit bad }' "$csv"
 for f in smoke_work_precision.png smoke_error_dofs.png smoke_breakdown.png smoke_J.png; do
   head -c 8 "$out/smoke/$f" | od -An -c | grep -q 'P   N   G' || { echo "$f is not a PNG"; exit 1; }
 done
+# tools/compare_studies.py: one quantity of several studies on one plot, from their committed CSVs.
+tools/compare_studies.py front "$out/side_by_side.png" bingham_collapse_es bingham_collapse_mpm > /dev/null \
+  || { echo "compare_studies failed"; exit 1; }
+head -c 8 "$out/side_by_side.png" | od -An -c | grep -q 'P   N   G' || { echo "side_by_side.png is not a PNG"; exit 1; }
 "$loom" run scenes/homogeneous_compression.toml --out "$out/profiled" --quiet --profile --set output.every=0
 tools/profile_folded "$out/profiled/timings.json" > "$out/folded" || { echo "profile_folded failed"; exit 1; }
 grep -q '^step 1;newton;iteration 1;solve;factorize [0-9]*$' "$out/folded" \
