@@ -13,6 +13,7 @@
 #include "systems/assemble/materials/first_piola.hpp"
 #include "systems/assemble/materials/hencky_perzyna.hpp"
 #include "systems/assemble/materials/history_point.hpp"
+#include "systems/output/elastic_energy.hpp"
 
 namespace loom {
 namespace {
@@ -261,6 +262,10 @@ TEST(HenckyPerzynaStep, ElasticHistoryIsHenckyOfTotalGradient) {
   EXPECT_LT((P - P_hencky).norm(), 1e-14 * P.norm());
   EXPECT_LT((step.be - F * F.transpose()).norm(), 1e-14);
   EXPECT_LT((m.kirchhoff(step.be) - P * F.transpose()).norm(), 1e-14 * P.norm());  // the stress written for output
+  // Energy probes of elastic Hencky (no b^e carried): the energy of F F^T, that of the history when it is carried.
+  const BodyMaterial body{m, 1.0};
+  EXPECT_GT(elastic_energy(body, F), 0.0);
+  EXPECT_NEAR(elastic_energy(body, F), m.energy(step.be), 1e-14);
 }
 
 // visit_point_material: a point without history sees the model itself; with history, the step, whose b^e it keeps.

@@ -1,6 +1,7 @@
 #include "engine/methods/model/fem_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "engine/core/errors.hpp"
@@ -48,7 +49,8 @@ void use_history_columns(const SceneSpec& scene, const std::vector<Cells>& cells
     const Formulation f = cells[k].formulation;
     if (f != Formulation::p1 && f != Formulation::tri6 && f != Formulation::quad9) continue;
     const bool history = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const BodySpec& b) {
-      return b.element == f && scene.materials[std::size_t(b.material)].model == MaterialModel::hencky_perzyna;
+      const MaterialSpec& m = scene.materials[std::size_t(b.material)];
+      return b.element == f && m.model == MaterialModel::hencky_perzyna && std::isfinite(m.tau0);  // elastic Hencky: a function of F
     });
     quad[k].be_n.use(history), quad[k].be.use(history);
     quad[k].resize(quad[k].size());  // b^e = I in the reference state

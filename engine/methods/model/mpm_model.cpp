@@ -1,6 +1,7 @@
 #include "engine/methods/model/mpm_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -131,9 +132,11 @@ void MpmModelT<D>::set_columns(const BodySpec& body) {
   particles.pressure.use(mixed);
   particles.proj_u.use(osgs), particles.proj_p.use(osgs);
   particle_loc.F.use();
-  // Materials with history carry b^e at the particles (converged) and at their locations (the iterate's).
+  // Materials with history carry b^e at the particles (converged) and at their locations (the iterate's): a
+  // hencky_perzyna that yields. Without tau0 it is elastic Hencky, a function of F (b^e = F F^T), and pays nothing.
   const bool history = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const BodySpec& b) {
-    return b.element == Formulation::p1 && scene.materials[std::size_t(b.material)].model == MaterialModel::hencky_perzyna;
+    const MaterialSpec& m = scene.materials[std::size_t(b.material)];
+    return b.element == Formulation::p1 && m.model == MaterialModel::hencky_perzyna && std::isfinite(m.tau0);
   });
   particles.be.use(history), particle_loc.be.use(history);
   particle_loc.xi.use(scene.grid.quad9);

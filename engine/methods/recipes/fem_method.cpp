@@ -218,7 +218,8 @@ void FemRunT<D>::newton_node() {
   FemNewtonProblemT<D> problem(ctx_, m_.materials, m_.cells, m_.bc, m_.nodes, m_.quad, m_.system, solver_, timers_, &m_.edges);
   problem.set_walls(&m_.walls, &m_.node_body);
   NewtonSettings settings = newton_settings_of(scene_.solver);
-  settings.trials_without_tangent = true;  // assemble_system's residual alone is the full one's, and keeps no state
+  settings.trials_without_tangent = true;  // assemble_system's residual alone is the full one's; the state it keeps (F, b^e at the
+                                           // points) is that of the last assembly, always at the accepted iterate
   if (options_.verbose && options_.log) {
     *options_.log << "step " << ctx_.step << " (t = " << ctx_.t << ", dt = " << ctx_.dt << ")\n";
     settings.log = options_.log;
