@@ -31,11 +31,11 @@ std::vector<KeySpec> build_schema() {
   // [time]
   s.push_back(key("time", K::table, "Time stepping.").require());
   s.push_back(key("time.integrator", K::choice,
-                  "static: no inertia; euler_backward: implicit Euler ([Schewe 2024] eq 12; methods fem and pfem); newmark: Newmark "
+                  "static: no inertia; euler_backward: implicit Euler ([Schewe 2024] eq 12; methods fem, pfem and es_pfem); newmark: Newmark "
                   "with time.beta, time.gamma (method mpm: on the grid with lumped mass and beta = 1/4, gamma = 1/2, [Moreno et al.] §3.3, "
                   "or at the particles, mpm.scheme); bossak: alpha-Bossak "
-                  "(Wood, Bossak & Zienkiewicz 1980; [Reinold 2021] §3.6) with beta = (1 - alpha)^2 / 4, gamma = 1/2 - alpha (methods fem "
-                  "and pfem).")
+                  "(Wood, Bossak & Zienkiewicz 1980; [Reinold 2021] §3.6) with beta = (1 - alpha)^2 / 4, gamma = 1/2 - alpha (methods fem, "
+                  "pfem and es_pfem).")
                   .one_of({"static", "euler_backward", "newmark", "bossak"}).by_default("static"));
   s.push_back(key("time.alpha", K::real,
                   "bossak: alpha_B in [-1/3, 0]; 0 is Newmark's average acceleration (no numerical damping), more negative damps the "

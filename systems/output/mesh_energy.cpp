@@ -81,7 +81,9 @@ MeshEnergy mesh_energy(const std::vector<BodyMaterial>& materials, const Nodes<D
       for (int i = 0; i < q.per_cell; ++i) {
         const Index point = c * q.per_cell + i;
         const Mat3& F = q.F_n[point];
-        e.elastic += (mixed ? share : q.weight_n[point] / F.determinant()) * elastic_energy(m, F);
+        const auto* hp = std::get_if<HenckyPerzyna>(&m.model);
+        const double psi = hp && q.be_n.used() ? hp->energy(q.be_n[point]) : elastic_energy(m, F);  // a yielding Hencky: of its b^e
+        e.elastic += (mixed ? share : q.weight_n[point] / F.determinant()) * psi;
       }
     }
   }

@@ -10,12 +10,15 @@
 //  - Newmark at the particles (quad4 grid), steps long against the block's period and gamma = 0.9 so that the
 //    sudden load's oscillation is damped out: the block comes to the same rest, the ground carrying rho g V to 1e-8.
 // fem, tri6 (tests/scenes/fem_bingham_block.toml, the yielding block): isochoric flow at every point, part of the
-// block flowing, the base carrying the weight.
+// block flowing, the base carrying the weight; its energy probe reads psi(b^e), which below yield is elastic
+// Hencky's psi(F F^T) of the same block run without a yield stress (no history carried) to round-off.
 // The plane Poiseuille flow run by mpm, p1 and tri6 is in bingham_poiseuille_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 #include "engine/scene/scene_loader.hpp"
 #include "tests/support/test_support.hpp"
@@ -112,9 +115,41 @@ TEST(FemBingham, YieldingBlockFlowsIsochoricallyAtTheQuadraturePoints) {
   const double base = run->probe_values()[0];
   std::printf("[fem bingham] yielding tri6 block: %d of %lld points flowed, base force %.10f of %.10f\n", flowed, (long long)q.size(), base,
               kWeight);
+  // The energy probe reads the stored energy of b^e (not of F F^T, which counts the flow as stored).
+  const HenckyPerzyna& hp = std::get<HenckyPerzyna>(run->model().materials[0].model);
+  double of_be = 0.0, of_F = 0.0;
+  for (Index p = 0; p < q.size(); ++p) {
+    const double V0 = q.weight_n[p] / q.F_n[p].determinant();
+    of_be += V0 * hp.energy(q.be_n[p]), of_F += V0 * hp.energy(q.F_n[p] * q.F_n[p].transpose());
+  }
+  EXPECT_NEAR(run->probe_values()[2], of_be, 1e-12 * of_be);
+  EXPECT_GT(std::abs(of_F - of_be), 1e-3 * of_be);
   EXPECT_GT(flowed, q.size() / 10);
   EXPECT_LT(flowed, q.size());
   EXPECT_NEAR(base, kWeight, 1e-10 * kWeight);
+}
+
+TEST(FemBingham, EnergyOfTheHistoryBelowYieldIsElasticHencky) {
+  const std::string path = std::string(LOOM_SOURCE_DIR) + "/tests/scenes/fem_bingham_block.toml";
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string elastic = ss.str();
+  const std::string yield = "tau0 = 3000.0\nviscosity = 1e5\n";
+  ASSERT_NE(elastic.find(yield), std::string::npos);
+  elastic.erase(elastic.find(yield), yield.size());
+  auto energy_of = [](const SceneSpec& scene) {
+    auto run = testing::make_fem_run(scene);
+    const RunSummary summary = run->run();
+    EXPECT_TRUE(summary.converged) << summary.failure;
+    EXPECT_EQ(run->model().quad[0].be_n.used(), std::isfinite(scene.materials[0].tau0));
+    return run->probe_values()[2];
+  };
+  const double with_history = energy_of(load_scene(path, {"material[0].tau0=1e9", "time.steps=2", "output.every=0"}));
+  const double without = energy_of(testing::scene_from_text(elastic, {"time.steps=2", "output.every=0"}));
+  std::printf("[fem bingham] elastic energy below yield: %.12e (b^e) against %.12e (F F^T)\n", with_history, without);
+  EXPECT_GT(without, 0.0);
+  EXPECT_NEAR(with_history, without, 1e-10 * without);
 }
 
 }  // namespace
