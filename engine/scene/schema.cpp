@@ -92,7 +92,7 @@ std::vector<KeySpec> build_schema() {
                   "+ K/2 (J - 1)^2 ([Moreno et al.] §2.2), the material of the mixed u-p formulation; hencky_perzyna: Hencky elasticity "
                   "(quadratic in the logarithmic elastic strains) with Perzyna viscoplasticity of von Mises type, a Bingham material "
                   "([Reinold 2021] §2), for the elements es_up, es_u, fem_up and fem_u, the quadrature points of p1, tri6 (tet10) and "
-                  "quad9 in method fem and method mpm's particles (element p1), which carry its history b^e.")
+                  "quad9 in methods fem and pfem and method mpm's particles (element p1), which carry its history b^e.")
                   .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split", "hencky_perzyna"}).require());
   s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
   s.push_back(key("material[].nu", K::real,

@@ -22,7 +22,8 @@ namespace {
 // Where hencky_perzyna's history b^e is carried from step to step outside the smoothing domains.
 bool carries_history(Method method, Formulation element) {
   if (is_mpm(method)) return element == Formulation::p1;
-  return method == Method::fem && (element == Formulation::p1 || element == Formulation::tri6 || element == Formulation::quad9);
+  return (method == Method::fem || method == Method::pfem) &&
+         (element == Formulation::p1 || element == Formulation::tri6 || element == Formulation::quad9);
 }
 
 }  // namespace
@@ -61,15 +62,14 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   } else if (s.scene.method == Method::es_pfem) {
     t.error("element", "method es_pfem takes the elements es_up, es_u, fem_up or fem_u, not " + std::string(element));
   } else if (std::isfinite(m.tau0) && !carries_history(s.scene.method, b.element)) {
-    // The material points of method mpm and the quadrature points of fem's displacement elements carry b^e
-    // (systems/assemble/materials/history_point.hpp); pfem's remesh maps F_n to new points but not b^e yet.
+    // The material points of method mpm and the quadrature points of fem's and pfem's displacement elements carry
+    // b^e (systems/assemble/materials/history_point.hpp, engine/methods/pfem/point_history_transfer.hpp).
     const char* why = b.element == Formulation::p1p1_up     ? " (its pressure equation is that of neo_hooke_split)"
                       : b.element == Formulation::p1p1_uphi ? " (its dilatation phi is that of neo_hooke)"
-                      : s.scene.method == Method::pfem      ? " in method pfem (the remesh transfers F_n to new points, not yet b^e)"
                                                             : "";
     t.error("material", "material \"" + m.name + "\" yields (tau0): viscoplasticity needs an integration point that carries its history "
-                        "b^e from step to step (the elements es_up, es_u, fem_up, fem_u; p1, tri6 (tet10) and quad9 in method fem; "
-                        "method mpm's particles with element p1), not " + element + why);
+                        "b^e from step to step (the elements es_up, es_u, fem_up, fem_u; p1, tri6 (tet10) and quad9 in methods fem and "
+                        "pfem; method mpm's particles with element p1), not " + element + why);
   }
 }
 

@@ -155,6 +155,9 @@ TEST(Restart, MpmBinghamContinuesBitForBit) {
 // ... and at the quadrature points of fem's tri6 (QuadPoints::be_n in the checkpoint).
 TEST(Restart, FemBinghamContinuesBitForBit) {
   expect_restart_reproduces("fem_bingham", kSource + "/tests/scenes/fem_bingham_block.toml", {}, 4, 10, "fem-bingham-block_000010.vtu");
+  // pfem: the checkpoint of step 4 holds remeshed cells with mapped b^e (the block's connectivity changes in most steps).
+  expect_restart_reproduces("pfem_bingham", kSource + "/tests/scenes/fem_bingham_block.toml", {"scene.method=\"pfem\""}, 4, 10,
+                            "fem-bingham-block_000010.vtu");
 }
 
 // SIGINT stops the run after the step in progress: exit 130, run.json says "interrupted" with the last

@@ -38,13 +38,13 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
   return LinearSolverKind::umfpack;
 }
 
-// Materials with history (hencky_perzyna) at the points of the displacement elements p1, tri6 (tet10) and quad9 of
-// method fem: b^e_n and the iterate's b^e per point. (The smoothed elements carry it on their domains; p1p1_uphi
-// takes neo_hooke only; pfem's remesh maps F_n to new points but not b^e, so there elastic Hencky stays a function
-// of F and a yield stress is refused.)
+// Materials with history (a yielding hencky_perzyna) at the points of the displacement elements p1, tri6 (tet10) and
+// quad9 of methods fem and pfem: b^e_n and the iterate's b^e per point (pfem's remesh carries them on:
+// engine/methods/pfem/point_history_transfer.hpp). The smoothed elements carry it on their domains; p1p1_uphi
+// takes neo_hooke only.
 template <int D>
 void use_history_columns(const SceneSpec& scene, const std::vector<Cells>& cells, std::vector<QuadPoints<D>>& quad) {
-  if (scene.scene.method != Method::fem) return;
+  if (scene.scene.method != Method::fem && scene.scene.method != Method::pfem) return;
   for (std::size_t k = 0; k < cells.size(); ++k) {
     const Formulation f = cells[k].formulation;
     if (f != Formulation::p1 && f != Formulation::tri6 && f != Formulation::quad9) continue;

@@ -1,4 +1,5 @@
 #include "engine/methods/pfem/pfem_remesh.hpp"
+#include "engine/methods/pfem/point_history_transfer.hpp"
 
 #include <algorithm>
 #include <map>
@@ -60,6 +61,8 @@ void set_midpoint(Nodes<2>& nodes, Index to, Index a, Index b) {
 struct OldMesh {
   std::vector<Vec2> x;
   std::vector<Mat3> F;
+  std::vector<Mat3> be;                      // hencky_perzyna's b^e_n (I at points without history)
+  std::vector<Formulation> with_history;     // the blocks that carry it
   std::map<std::pair<Index, Index>, Index> first_point;  // (block, cell) -> index of its first point in x
   DomainSnapshot<2> domains;
 };
@@ -73,9 +76,11 @@ OldMesh snapshot_old_mesh(const FemModel& m) {
       for (int p = 0; p < q.per_cell; ++p) {
         old.x.push_back(quad_point_position(m.nodes, m.cells[k], q.per_cell, c, p));
         old.F.push_back(q.F_n[c * q.per_cell + p]);
+        old.be.push_back(q.be_n.used() ? q.be_n[c * q.per_cell + p] : Mat3::Identity());
       }
     }
   }
+  old.with_history = formulations_with_history(m.cells, m.quad);
   old.domains = snapshot_domains(m.edges, m.cells);  // es_pfem: the domains' history
   return old;
 }
@@ -269,6 +274,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
   }
   for (auto& c : m.cells) colour_cells(c, m.nodes.size());
   allocate_quad_points(m.cells, m.quad);
+  use_history_columns(old->with_history, m.cells, m.quad);
   LOOM_CHECK(compute_geometry(m.nodes, m.cells, m.quad) == 0, RunError, "remesh: the new mesh has inverted cells");
 
   rebuild.stop();
@@ -302,6 +308,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
+  transfer_point_history(old_x, old->be, new_x, copy_from, settings.map, m.quad);
   if (!m.edges.empty()) {
     // Dynamic runs carry each particle's mass in lumped_mass: the new triangles share it out (mass conserved).
     std::vector<double> density;

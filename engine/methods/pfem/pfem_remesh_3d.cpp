@@ -19,6 +19,7 @@
 #include "engine/methods/pfem/inlet_flow_3d.hpp"
 #include "engine/methods/pfem/particle_insertion_3d.hpp"
 #include "engine/methods/pfem/pfem_remesh.hpp"
+#include "engine/methods/pfem/point_history_transfer.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/assemble/elements/tet10.hpp"
 #include "systems/assemble/elements/tet4.hpp"
@@ -69,6 +70,8 @@ void set_midpoint(Nodes<3>& nodes, Index to, Index a, Index b) {
 struct OldPoints {
   std::vector<Vec3> x;
   std::vector<Mat3> F;
+  std::vector<Mat3> be;                   // hencky_perzyna's b^e_n (I at points without history)
+  std::vector<Formulation> with_history;  // the blocks that carry it
   std::map<Quad, std::pair<Index, Index>> cell_of;  // sorted corners -> (block, cell)
   std::map<std::pair<Index, Index>, Index> first_point;
   DomainSnapshot<3> domains;  // es_pfem: the domains' history
@@ -85,9 +88,11 @@ OldPoints snapshot(const FemModelT<3>& m) {
       for (int p = 0; p < q.per_cell; ++p) {
         old.x.push_back(quad_point_position(m.nodes, m.cells[k], q.per_cell, c, p));
         old.F.push_back(q.F_n[c * q.per_cell + p]);
+        old.be.push_back(q.be_n.used() ? q.be_n[c * q.per_cell + p] : Mat3::Identity());
       }
     }
   }
+  old.with_history = formulations_with_history(m.cells, m.quad);
   return old;
 }
 
@@ -160,6 +165,7 @@ void transfer_history(const PfemSettings& settings, const OldPoints& old, const 
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
+  transfer_point_history(old.x, old.be, new_x, copy_from, settings.map, m.quad);
 }
 
 }  // namespace
@@ -275,6 +281,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
   rebuild_cells(tets, merged, topo.n_points, m, gap_cells);
   gap_cells.resize(m.cells.size());
   allocate_quad_points(m.cells, m.quad);
+  use_history_columns(old.with_history, m.cells, m.quad);
   LOOM_CHECK(compute_geometry(m.nodes, m.cells, m.quad) == 0, RunError, "remesh: the new mesh has inverted cells");
   rebuild.stop();
   ScopedTimer transfer(timers, "remesh/map");
