@@ -103,6 +103,17 @@ TEST(MpmBingham, ParticleNewmarkBlockComesToRest) {
   EXPECT_EQ(yielded(b.particles), 0);
 }
 
+// Quadrature points whose b^e is not F_n F_n^T (they have flowed), checking at each that the flow kept det b^e = J^2.
+int flowed_isochorically(const QuadPoints<2>& q) {
+  int flowed = 0;
+  for (Index p = 0; p < q.size(); ++p) {
+    const double J = q.F_n[p].determinant();
+    EXPECT_NEAR(q.be_n[p].determinant(), J * J, 1e-12) << p;
+    flowed += (q.be_n[p] - q.F_n[p] * q.F_n[p].transpose()).norm() > 1e-9;
+  }
+  return flowed;
+}
+
 TEST(FemBingham, YieldingBlockFlowsIsochoricallyAtTheQuadraturePoints) {
   const SceneSpec scene = load_scene(std::string(LOOM_SOURCE_DIR) + "/tests/scenes/fem_bingham_block.toml", {"output.every=0"});
   auto run = testing::make_fem_run(scene);
@@ -110,12 +121,7 @@ TEST(FemBingham, YieldingBlockFlowsIsochoricallyAtTheQuadraturePoints) {
   ASSERT_TRUE(summary.converged) << summary.failure;
   const QuadPoints<2>& q = run->model().quad[0];
   ASSERT_TRUE(q.be_n.used());
-  int flowed = 0;
-  for (Index p = 0; p < q.size(); ++p) {
-    const double J = q.F_n[p].determinant();
-    EXPECT_NEAR(q.be_n[p].determinant(), J * J, 1e-12) << p;
-    flowed += (q.be_n[p] - q.F_n[p] * q.F_n[p].transpose()).norm() > 1e-9;
-  }
+  const int flowed = flowed_isochorically(q);
   const double base = run->probe_values()[0];
   std::printf("[fem bingham] yielding tri6 block: %d of %lld points flowed, base force %.10f of %.10f\n", flowed, (long long)q.size(), base,
               kWeight);
@@ -153,12 +159,7 @@ TEST(PfemBingham, TheHistoryCrossesTheRemeshes) {
     ASSERT_TRUE(summary.converged) << summary.failure;
     const QuadPoints<2>& q = run->model().quad[0];
     ASSERT_TRUE(q.be_n.used());
-    int flowed = 0;
-    for (Index p = 0; p < q.size(); ++p) {
-      const double J = q.F_n[p].determinant();
-      EXPECT_NEAR(q.be_n[p].determinant(), J * J, 1e-12) << p;
-      flowed += (q.be_n[p] - q.F_n[p] * q.F_n[p].transpose()).norm() > 1e-9;
-    }
+    const int flowed = flowed_isochorically(q);
     const double top = run->probe_values()[1], top_fem = reference->probe_values()[1];
     std::printf("[pfem bingham] %s: %d remeshes changed the mesh, %d of %lld points flowed, top %.6e against fem's %.6e\n", element, changes,
                 flowed, (long long)q.size(), top, top_fem);
