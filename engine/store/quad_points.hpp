@@ -22,7 +22,7 @@ struct QuadPoints {
   // Converged Cauchy stress, kept where the stress is not a function of F (history materials; seed 001's
   // triangles carry the mean of their smoothing domains' stress). Unused otherwise.
   Column<Mat3> stress_n;
-  // Materials with history at the points of p1, tri6, quad9 and tet10 (hencky_perzyna on a fixed mesh): the converged
+  // Materials with history at the points of p1, tri6, quad9 and tet10 (a yielding hencky_perzyna in methods fem and pfem): the converged
   // elastic left Cauchy-Green b^e_n and the iterate's b^e (committed with F).
   Column<Mat3> be_n;
   Column<Mat3> be;
