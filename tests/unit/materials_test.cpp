@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "systems/assemble/materials/material.hpp"
+#include "tests/support/stress_derivative.hpp"
 
 namespace loom {
 namespace {
@@ -41,20 +42,7 @@ Mat3 energy_derivative(const Energy& psi, const Mat3& F, double h = 1e-5) {
   return P;
 }
 
-template <class MaterialT>
-Mat9 stress_derivative(const MaterialT& m, const Mat3& F, double h = 1e-6) {
-  Mat9 A;
-  for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) {
-      Mat3 Pp, Pm;
-      EXPECT_TRUE(m.stress(F + h * unit(k, l), Pp));
-      EXPECT_TRUE(m.stress(F - h * unit(k, l), Pm));
-      const Mat3 dP = (Pp - Pm) / (2 * h);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) A(ij(i, j), ij(k, l)) = dP(i, j);
-    }
-  return A;
-}
+using testing::stress_derivative;
 
 // Random deformation gradients with det F > 0.5: plane strain (F33 = 1, no out-of-plane shear) or general.
 std::vector<Mat3> random_deformations(bool plane_strain, int n, unsigned seed) {

@@ -19,12 +19,19 @@
 //   c^tau = sum_AB a_AB n_AABB - sum_A 2 tau_A n_AAAA + sum_{A != B} g_AB (n_ABAB + n_ABBA),
 //   g_AB = (tau_A lambda_B^2 - tau_B lambda_A^2) / (lambda_A^2 - lambda_B^2), equal stretches: 1/2 (a_AA - a_AB) - tau_A.
 // It depends on f only through l = df f^-1 (b^e_tr is pushed forward by f), which is what first_piola.hpp needs.
+//
+// With `friction` set the yield surface is Drucker-Prager's instead (drucker_prager.hpp: rate-independent,
+// non-associated flow, tau0 and viscosity unused): the same elasticity, history, spectral form and tangent, with the
+// stress's full principal values and modulus from that return. Its plastic flow changes volume, so det b^e = J^2
+// does not hold for it; and it needs the full stress (`deviatoric` false): the pressure is in its yield function.
 #pragma once
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "systems/assemble/materials/drucker_prager.hpp"
 #include "systems/assemble/materials/first_piola.hpp"
 #include "systems/assemble/materials/tensor9.hpp"
 
@@ -44,6 +51,7 @@ struct HenckyPerzyna {
   double K = 0.0, G = 0.0;
   double tau0 = std::numeric_limits<double>::infinity();  // shear yield stress; infinite: Hencky elastic
   double viscosity = 0.0;                                  // Bingham plastic viscosity mu
+  std::optional<DruckerPrager> friction = std::nullopt;    // set: Drucker-Prager's yield surface instead of von Mises'
 
   // The stored energy per unit reference volume of an elastic state b^e (eq 19): G sum_A (dev eps_A)^2 + K/2 (ln J)^2,
   // eps_A = 1/2 ln of b^e's eigenvalues (G sum eps_A^2 + 1/2 (K - 2G/3) (ln J)^2 written with the deviator).
@@ -76,9 +84,14 @@ struct HenckyPerzyna {
     const Mat3 dev = Mat3::Identity() - Mat3::Constant(1.0 / 3.0);
     Vec3 t = s;
     Mat3 a = 2.0 * G * dev;
-    out.plastic = q > tau0;
-    out.tau_eq = q;
-    if (out.plastic) {
+    if (friction) {
+      if (deviatoric) return false;  // its yield function needs the pressure: the scene checks refuse mixed elements
+      out.plastic = friction->return_map(K, G, eps, t, a, out.tau_eq);
+    } else {
+      out.plastic = q > tau0;
+      out.tau_eq = q;
+    }
+    if (out.plastic && !friction) {
       const double H = G + viscosity / dt;
       const double dgamma = (q - tau0) / H;
       const double factor = 1.0 - G * dgamma / q;
@@ -88,7 +101,7 @@ struct HenckyPerzyna {
       eps -= dgamma / (2.0 * q) * s;
       out.tau_eq = factor * q;
     }
-    if (!deviatoric) t.array() += K * theta, a.array() += K;
+    if (!deviatoric && !friction) t.array() += K * theta, a.array() += K;
     // Elastic: b^e is the trial state itself (rebuilding it from the spectral form would only add round-off,
     // and a body at rest would drift by it step after step).
     out.be = out.plastic ? Mat3(n * eps.array().exp().square().matrix().asDiagonal() * n.transpose()) : be_tr;
@@ -118,6 +131,7 @@ struct HenckyPerzyna {
   bool elastic_update(const Mat3& f, const Mat3& be_n, bool tangent, HistoryResponse& r) const {
     HenckyPerzyna e = *this;
     e.tau0 = std::numeric_limits<double>::infinity();
+    e.friction.reset();
     return e.update(f, be_n, 1.0, false, tangent, r);
   }
 
