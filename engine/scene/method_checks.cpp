@@ -40,9 +40,9 @@ void check_method_support(const SceneSpec& s, const TableReader& root, Diagnosti
                                       "\" is none of them)");
         else if (b.element == Formulation::p1p1_uphi && s.scene.method != Method::fem)
           probes[k].error("kind", "energy probes of p1p1_uphi bodies need method fem (the reference simplex of a remeshed cell is not its own)");
-        else if (model != MaterialModel::neo_hooke && model != MaterialModel::linear_elastic && model != MaterialModel::hencky_perzyna)
+        else if (model != MaterialModel::neo_hooke && model != MaterialModel::linear_elastic && !is_hencky(model))
           probes[k].error("kind", "energy probes of method " + std::string(method_name(s.scene.method)) +
-                                      " take the materials neo_hooke, linear_elastic and hencky_perzyna (body \"" + b.name + "\")");
+                                      " take the materials neo_hooke, linear_elastic, hencky_perzyna and drucker_prager (body \"" + b.name + "\")");
       }
       if (s.time.integrator != Integrator::static_ && s.time.mass == MassKind::consistent)
         probes[k].error("kind", "the kinetic energy of method " + std::string(method_name(s.scene.method)) + " is of the lumped mass: use time.mass = \"lumped\"");

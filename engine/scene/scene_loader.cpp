@@ -11,6 +11,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/scene/dimension_options.hpp"
+#include "engine/scene/material_options.hpp"
 #include "engine/scene/expression.hpp"
 #include "engine/scene/mesh_options.hpp"
 #include "engine/scene/method_checks.hpp"
@@ -201,8 +202,9 @@ class Loader {
     if (find_by_name(s.materials, m.name) != kNoIndex) t.error("name", "a material named \"" + m.name + "\" already exists");
     m.model = pick<MaterialModel>(t.string("model"), {{"neo_hooke", MaterialModel::neo_hooke}, {"linear_elastic", MaterialModel::linear_elastic},
                                                                        {"neo_hooke_split", MaterialModel::neo_hooke_split},
-                                                                       {"hencky_perzyna", MaterialModel::hencky_perzyna}});
-    read_hencky_perzyna(m, t);
+                                                                       {"hencky_perzyna", MaterialModel::hencky_perzyna},
+                                                                       {"drucker_prager", MaterialModel::drucker_prager}});
+    read_plasticity(m, t, s.scene.dimension);
     m.density = t.real("density");
     const bool e_nu = t.has("E") || t.has("nu"), k_g = t.has("K") || t.has("G");
     if (e_nu && k_g) {

@@ -3,6 +3,7 @@
 // (an empty region), so the specs keep the source position of the keys they came from.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -30,7 +31,9 @@ enum class Predictor { last_step, constant_acceleration };
 enum class Stabilisation { none, ppp, asgs, osgs };
 enum class EnergyPart { kinetic, elastic, total, potential, mechanical };
 enum class MassKind { lumped, consistent };
-enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna };
+enum class MaterialModel { neo_hooke, linear_elastic, neo_hooke_split, hencky_perzyna, drucker_prager };
+// drucker_prager: which Mohr-Coulomb section its cone passes through.
+enum class ConeMatch { plane_strain, compression, extension };
 enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file, box };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
@@ -100,8 +103,23 @@ struct MaterialSpec {
   // hencky_perzyna (seed 001 §2): shear yield stress (infinite: Hencky elastic) and Bingham viscosity.
   double tau0 = std::numeric_limits<double>::infinity();
   double viscosity = 0;
+  // drucker_prager: Mohr-Coulomb's friction and dilatancy angles (degrees) and cohesion, and the cone's match.
+  double friction_angle = 0, dilatancy_angle = 0, cohesion = 0;
+  ConeMatch cone = ConeMatch::plane_strain;
   SourceRef where;
 };
+
+// Hencky elasticity with a plastic return (hencky_perzyna, drucker_prager): the elements and particles see one model.
+inline bool is_hencky(MaterialModel m) { return m == MaterialModel::hencky_perzyna || m == MaterialModel::drucker_prager; }
+// Non-associated flow (drucker_prager with dilatancy_angle != friction_angle): the consistent tangent is unsymmetric,
+// so a back-end that reads one triangle (CHOLMOD) would solve with another matrix and Newton would lose its rate.
+inline bool has_unsymmetric_tangent(const MaterialSpec& m) {
+  return m.model == MaterialModel::drucker_prager && m.dilatancy_angle != m.friction_angle;
+}
+// A material whose state is not a function of F: it carries the elastic history b^e from step to step.
+inline bool has_history(const MaterialSpec& m) {
+  return m.model == MaterialModel::drucker_prager || (m.model == MaterialModel::hencky_perzyna && std::isfinite(m.tau0));
+}
 
 struct MeshSpec {
   MeshGenerator generator = MeshGenerator::rectangle;
@@ -320,6 +338,12 @@ inline Index mpm_body_index(const SceneSpec& s) {
   for (std::size_t b = 0; b < s.bodies.size(); ++b)
     if (s.bodies[b].element != Formulation::quad9) return Index(b);
   return 0;
+}
+
+inline bool has_unsymmetric_material(const SceneSpec& s) {
+  for (const MaterialSpec& m : s.materials)
+    if (has_unsymmetric_tangent(m)) return true;
+  return false;
 }
 
 }  // namespace loom

@@ -92,8 +92,11 @@ std::vector<KeySpec> build_schema() {
                   "+ K/2 (J - 1)^2 ([Moreno et al.] §2.2), the material of the mixed u-p formulation; hencky_perzyna: Hencky elasticity "
                   "(quadratic in the logarithmic elastic strains) with Perzyna viscoplasticity of von Mises type, a Bingham material "
                   "([Reinold 2021] §2), for the elements es_up, es_u, fem_up and fem_u, the quadrature points of p1, tri6 (tet10) and "
-                  "quad9 in methods fem and pfem and method mpm's particles (element p1), which carry its history b^e.")
-                  .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split", "hencky_perzyna"}).require());
+                  "quad9 in methods fem and pfem and method mpm's particles (element p1), which carry its history b^e; "
+                  "drucker_prager: the same Hencky elasticity with rate-independent Drucker-Prager plasticity and non-associated "
+                  "flow (friction_angle, dilatancy_angle, cohesion; [de Souza Neto 2008] §8.3), for the elements and particles "
+                  "that carry b^e except the smoothed ones (its flow changes the volume).")
+                  .one_of({"neo_hooke", "linear_elastic", "neo_hooke_split", "hencky_perzyna", "drucker_prager"}).require());
   s.push_back(key("material[].E", K::real, "Young's modulus (with nu).").above(0));
   s.push_back(key("material[].nu", K::real,
                   "Poisson's ratio (with E), -1 < nu < 0.5; nu = 0.5 (incompressible, 1/kappa = 0) with model neo_hooke_split and "
@@ -105,6 +108,19 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("material[].viscosity", K::real,
                   "hencky_perzyna: Bingham plastic viscosity mu (steady simple shear: tau = tau0 + mu gammadot); 0: rate-independent "
                   "von Mises.").by_default("0").at_least(0));
+  s.push_back(key("material[].friction_angle", K::real,
+                  "drucker_prager: Mohr-Coulomb's friction angle phi in degrees, 0 <= phi < 90; the cone's slope eta and cohesion "
+                  "factor xi follow from it (see cone). Yield: sqrt(J2) + eta p - xi c <= 0, p the mean stress (positive in tension).")
+                  .at_least(0));
+  s.push_back(key("material[].dilatancy_angle", K::real,
+                  "drucker_prager: dilatancy angle psi in degrees, 0 <= psi <= friction_angle (psi = phi: associated flow; 0: "
+                  "plastic flow at constant volume on the cone).").by_default("0").at_least(0));
+  s.push_back(key("material[].cohesion", K::real, "drucker_prager: cohesion c (0: a cohesionless material, which carries no tension).")
+                  .by_default("0").at_least(0));
+  s.push_back(key("material[].cone", K::choice,
+                  "drucker_prager: the Mohr-Coulomb section the cone matches: plane_strain (collapse loads of plane strain), "
+                  "compression (outer cone, triaxial compression) or extension (inner cone). Default: plane_strain in 2D, "
+                  "compression in 3D.").one_of({"plane_strain", "compression", "extension"}));
   s.push_back(key("material[].density", K::real, "Reference mass density rho_0 (needed by dynamic integrators and body forces).").by_default("0").at_least(0));
   // [[body]]
   s.push_back(key("body", K::table_array, "Bodies: a mesh, a material and an element.").require());

@@ -4,22 +4,9 @@
 
 namespace loom {
 
-void read_hencky_perzyna(MaterialSpec& m, const TableReader& t) {
-  const bool hp = m.model == MaterialModel::hencky_perzyna;
-  for (const char* k : {"tau0", "viscosity"})
-    if (t.has(k) && !hp) t.error(k, std::string(k) + " is used by model = \"hencky_perzyna\" only");
-  if (!hp) return;
-  if (t.has("tau0")) m.tau0 = t.real("tau0");
-  m.viscosity = t.real("viscosity");
-  if (t.has("viscosity") && !t.has("tau0")) t.error("viscosity", "viscosity acts above the yield stress: give tau0 too (without it the material is elastic)");
-  // tau0 = 0 and mu = 0 leave no deviatoric stress once it flows: the tangent is singular.
-  if (t.has("tau0") && m.tau0 == 0.0 && !(m.viscosity > 0.0))
-    t.error("tau0", "tau0 = 0 needs viscosity > 0 (a Maxwell fluid); with both zero the material carries no shear stress");
-}
-
 namespace {
 
-// Where hencky_perzyna's history b^e is carried from step to step outside the smoothing domains.
+// Where the history b^e of hencky_perzyna and drucker_prager is carried from step to step outside the smoothing domains.
 bool carries_history(Method method, Formulation element) {
   if (is_mpm(method)) return element == Formulation::p1;
   return (method == Method::fem || method == Method::pfem) &&
@@ -49,6 +36,10 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
   if (b.material == kNoIndex) return;
   const MaterialSpec& m = s.materials[std::size_t(b.material)];
   if (integrates_on_domains(b.element)) {
+    if (m.model == MaterialModel::drucker_prager)
+      t.error("material", "drucker_prager's plastic flow changes the volume (dilatancy, the return to the apex), and the smoothed "
+                          "elements take a domain's J from its history as sqrt(det b^e), true of isochoric flow only; run it with "
+                          "method mpm (element p1) or with p1, tri6 (tet10) or quad9 in methods fem and pfem");
     if (m.model == MaterialModel::linear_elastic && (s.scene.method == Method::es_pfem || b.j_projection))
       t.error(s.scene.method == Method::es_pfem ? "material" : "j_projection",
               "linear_elastic is geometrically linear on a fixed mesh; remeshing and the J projection act on the finite-strain "
@@ -61,15 +52,17 @@ void read_smoothed_body(const SceneSpec& s, const TableReader& t, BodySpec& b) {
                              method_name(s.scene.method) + " takes other elements");
   } else if (s.scene.method == Method::es_pfem) {
     t.error("element", "method es_pfem takes the elements es_up, es_u, fem_up or fem_u, not " + std::string(element));
-  } else if (std::isfinite(m.tau0) && !carries_history(s.scene.method, b.element)) {
+  } else if (has_history(m) && !carries_history(s.scene.method, b.element)) {
     // The material points of method mpm and the quadrature points of fem's and pfem's displacement elements carry
     // b^e (systems/assemble/materials/history_point.hpp, engine/methods/pfem/point_history_transfer.hpp).
     const char* why = b.element == Formulation::p1p1_up     ? " (its pressure equation is that of neo_hooke_split)"
                       : b.element == Formulation::p1p1_uphi ? " (its dilatation phi is that of neo_hooke)"
                                                             : "";
-    t.error("material", "material \"" + m.name + "\" yields (tau0): viscoplasticity needs an integration point that carries its history "
-                        "b^e from step to step (the elements es_up, es_u, fem_up, fem_u; p1, tri6 (tet10) and quad9 in methods fem and "
-                        "pfem; method mpm's particles with element p1), not " + element + why);
+    const bool frictional = m.model == MaterialModel::drucker_prager;
+    t.error("material", "material \"" + m.name + "\" " + (frictional ? "is plastic (drucker_prager): plasticity" : "yields (tau0): viscoplasticity") +
+                            " needs an integration point that carries its history b^e from step to step (" +
+                            (frictional ? "" : "the elements es_up, es_u, fem_up, fem_u; ") +
+                            "p1, tri6 (tet10) and quad9 in methods fem and pfem; method mpm's particles with element p1), not " + element + why);
   }
 }
 

@@ -12,6 +12,7 @@
 #include "engine/methods/model/build_walls.hpp"
 #include "engine/methods/model/initial_velocity.hpp"
 #include "engine/methods/model/memory_estimate.hpp"
+#include "engine/store/history_columns.hpp"
 #include "systems/assemble/compute_geometry.hpp"
 #include "systems/update/lumped_mass.hpp"
 
@@ -26,9 +27,16 @@ bool has_body(const SceneSpec& scene, bool (*test)(Formulation)) {
 
 bool mixed_formulation(Formulation f) { return has_dilatation(f) || has_pressure(f); }
 
-// The mixed tangents are not symmetric (u-phi: seed 000 eqs 40-42; u-p: seed 001 eqs 60-61): CHOLMOD, which
-// reads one triangle, cannot take them.
+// The mixed tangents are not symmetric (u-phi: seed 000 eqs 40-42; u-p: seed 001 eqs 60-61), nor is non-associated
+// plasticity's: CHOLMOD, which reads one triangle, cannot take them.
 LinearSolverKind linear_solver_for(const SceneSpec& scene) {
+  if (has_unsymmetric_material(scene) && scene.solver.linear != LinearSolverKind::petsc) {
+    LOOM_CHECK(!needs_spd(scene.solver.linear), InputError,
+               scene.solver.linear_where << ": error: solver.linear: " << linear_solver_key(scene.solver.linear)
+                          << " needs a symmetric tangent, and drucker_prager's non-associated flow (dilatancy_angle != friction_angle) "
+                          << "makes it unsymmetric; use umfpack or auto");
+    return LinearSolverKind::umfpack;
+  }
   // petsc takes the mixed systems too (a Schur-complement fieldsplit, engine/linalg/petsc_solver.cpp).
   if (!has_body(scene, mixed_formulation) || scene.solver.linear == LinearSolverKind::petsc) return scene.solver.linear;
   const char* element = has_body(scene, has_dilatation) ? "p1p1_uphi" : has_body(scene, has_pressure) ? "es_up or fem_up" : "";
@@ -38,23 +46,18 @@ LinearSolverKind linear_solver_for(const SceneSpec& scene) {
   return LinearSolverKind::umfpack;
 }
 
-// Materials with history (a yielding hencky_perzyna) at the points of the displacement elements p1, tri6 (tet10) and
-// quad9 of methods fem and pfem: b^e_n and the iterate's b^e per point (pfem's remesh carries them on:
-// engine/methods/pfem/point_history_transfer.hpp). The smoothed elements carry it on their domains; p1p1_uphi
-// takes neo_hooke only.
-template <int D>
-void use_history_columns(const SceneSpec& scene, const std::vector<Cells>& cells, std::vector<QuadPoints<D>>& quad) {
-  if (scene.scene.method != Method::fem && scene.scene.method != Method::pfem) return;
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    const Formulation f = cells[k].formulation;
-    if (f != Formulation::p1 && f != Formulation::tri6 && f != Formulation::quad9) continue;
-    const bool history = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const BodySpec& b) {
-      const MaterialSpec& m = scene.materials[std::size_t(b.material)];
-      return b.element == f && m.model == MaterialModel::hencky_perzyna && std::isfinite(m.tau0);  // elastic Hencky: a function of F
-    });
-    quad[k].be_n.use(history), quad[k].be.use(history);
-    quad[k].resize(quad[k].size());  // b^e = I in the reference state
-  }
+// Materials with history (a yielding hencky_perzyna, drucker_prager) at the points of the displacement elements p1, tri6 (tet10) and
+// quad9 of methods fem and pfem carry b^e_n and the iterate's b^e per point (engine/store/history_columns.hpp; pfem's
+// remesh carries them on: engine/methods/pfem/point_history_transfer.hpp). The smoothed elements carry it on their
+// domains; the mixed elements refuse such materials.
+std::vector<Formulation> formulations_carrying_history(const SceneSpec& scene) {
+  std::vector<Formulation> f;
+  if (scene.scene.method != Method::fem && scene.scene.method != Method::pfem) return f;
+  for (const BodySpec& b : scene.bodies)
+    if ((b.element == Formulation::p1 || b.element == Formulation::tri6 || b.element == Formulation::quad9) &&
+        has_history(scene.materials[std::size_t(b.material)]))  // elastic Hencky (no tau0): a function of F
+      f.push_back(b.element);
+  return f;
 }
 
 }  // namespace
@@ -85,7 +88,7 @@ FemModelT<D>::FemModelT(const SceneSpec& spec) : scene(spec) {
   else node_body = build_mesh_3d(scene, nodes, cells, &regions);
   materials = body_materials(scene);
   allocate_quad_points(cells, quad);
-  use_history_columns(scene, cells, quad);
+  use_history_columns(formulations_carrying_history(scene), cells, quad);
   if (compute_geometry(nodes, cells, quad) != 0) {
     // compute_geometry does not say which body: with one body, point at its mesh.
     std::ostringstream where;

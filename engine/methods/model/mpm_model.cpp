@@ -133,10 +133,11 @@ void MpmModelT<D>::set_columns(const BodySpec& body) {
   particles.proj_u.use(osgs), particles.proj_p.use(osgs);
   particle_loc.F.use();
   // Materials with history carry b^e at the particles (converged) and at their locations (the iterate's): a
-  // hencky_perzyna that yields. Without tau0 it is elastic Hencky, a function of F (b^e = F F^T), and pays nothing.
+  // hencky_perzyna that yields, drucker_prager. Without tau0 hencky_perzyna is elastic Hencky, a function of F
+  // (b^e = F F^T), and pays nothing.
   const bool history = std::any_of(scene.bodies.begin(), scene.bodies.end(), [&](const BodySpec& b) {
     const MaterialSpec& m = scene.materials[std::size_t(b.material)];
-    return b.element == Formulation::p1 && m.model == MaterialModel::hencky_perzyna && std::isfinite(m.tau0);
+    return b.element == Formulation::p1 && has_history(m);
   });
   particles.be.use(history), particle_loc.be.use(history);
   particle_loc.xi.use(scene.grid.quad9);
@@ -148,13 +149,18 @@ void MpmModelT<D>::set_columns(const BodySpec& body) {
   probe_loc.entity = "probe point";
 }
 
-// UMFPACK for the mixed system and receding contact (unsymmetric, indefinite), the scene's choice otherwise (petsc takes
-// both: GMRES, or a Schur-complement fieldsplit).
+// UMFPACK for the mixed system, receding contact and non-associated plasticity (unsymmetric, indefinite), the scene's
+// choice otherwise (petsc takes them all: GMRES, or a Schur-complement fieldsplit).
 template <int D>
 void MpmModelT<D>::choose_linear_solver() {
   const bool unsymmetric = particle_newmark && scene.mpm.receding_contact > 0.0;  // receding contact: K T
-  linear_solver = (mixed || unsymmetric) && scene.solver.linear != LinearSolverKind::petsc ? LinearSolverKind::umfpack : scene.solver.linear;
+  const bool non_associated = has_unsymmetric_material(scene);
+  linear_solver = (mixed || unsymmetric || non_associated) && scene.solver.linear != LinearSolverKind::petsc ? LinearSolverKind::umfpack
+                                                                                                            : scene.solver.linear;
   const char* chosen = linear_solver_key(scene.solver.linear);
+  LOOM_CHECK(!(non_associated && needs_spd(scene.solver.linear)), InputError,
+             scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and drucker_prager's "
+                        << "non-associated flow (dilatancy_angle != friction_angle) makes it unsymmetric; use umfpack or auto");
   LOOM_CHECK(!(unsymmetric && needs_spd(scene.solver.linear)), InputError,
              scene.solver.linear_where << ": error: solver.linear: " << chosen << " needs a symmetric tangent, and receding contact (mpm.receding_contact > 0) "
                         << "makes it unsymmetric; use umfpack or auto");

@@ -308,7 +308,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
-  transfer_point_history(old_x, old->be, new_x, copy_from, settings.map, m.quad);
+  transfer_point_history(old_x, old->be, new_x, copy_from, settings.map, isochoric_plastic_flow(m.scene), m.quad);
   if (!m.edges.empty()) {
     // Dynamic runs carry each particle's mass in lumped_mass: the new triangles share it out (mass conserved).
     std::vector<double> density;

@@ -165,7 +165,7 @@ void transfer_history(const PfemSettings& settings, const OldPoints& old, const 
   std::size_t next = 0;
   for (auto& q : m.quad)
     for (Index p = 0; p < q.size(); ++p) q.F_n[p] = q.F[p] = new_F[next++];
-  transfer_point_history(old.x, old.be, new_x, copy_from, settings.map, m.quad);
+  transfer_point_history(old.x, old.be, new_x, copy_from, settings.map, isochoric_plastic_flow(m.scene), m.quad);
 }
 
 }  // namespace

@@ -24,6 +24,15 @@ inline Material make_material(const MaterialSpec& m) {
     case MaterialModel::linear_elastic: return LinearElastic{m.lambda, m.mu};
     case MaterialModel::neo_hooke_split: return NeoHookeSplit{m.mu, std::isinf(m.K) ? 0.0 : 1.0 / m.K};
     case MaterialModel::hencky_perzyna: return HenckyPerzyna{m.K, m.G, m.tau0, m.viscosity};
+    case MaterialModel::drucker_prager: {  // Hencky's elasticity with Drucker-Prager's return (drucker_prager.hpp)
+      const DruckerPragerCone cone = m.cone == ConeMatch::compression ? DruckerPragerCone::compression
+                                     : m.cone == ConeMatch::extension ? DruckerPragerCone::extension
+                                                                      : DruckerPragerCone::plane_strain;
+      const double degree = std::acos(-1.0) / 180.0;
+      HenckyPerzyna h{m.K, m.G};
+      h.friction = DruckerPrager::from_mohr_coulomb(m.friction_angle * degree, m.dilatancy_angle * degree, m.cohesion, cone);
+      return h;
+    }
   }
   return NeoHooke{m.lambda, m.mu};
 }
