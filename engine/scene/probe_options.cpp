@@ -165,6 +165,10 @@ void read_probe(SceneSpec& s, const TableReader& t) {
     case ProbeKind::pressure_jump: {
       if (p.kind == ProbeKind::extent) needs("component");
       else unused("component");
+      if (t.has("gap") && p.kind == ProbeKind::extent) {
+        if (!is_mpm(s.scene.method)) t.error("gap", "gap is read by extent probes of method mpm's particles (a mesh's extent has no strays)");
+        p.gap = t.real("gap");
+      }
       unused("boundary"), unused("at"), unused("group");
       // Method mpm_fem: extent probes read the particles.
       p.body = probe_body(s, t, s.scene.method == Method::mpm_fem && p.kind == ProbeKind::extent ? mpm_body_index(s) : kNoIndex);
@@ -176,6 +180,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   if (t.has("reference")) p.has_reference = true, p.reference = t.real("reference");
   if (p.kind != ProbeKind::extent && (p.kind != ProbeKind::section || p.component == 5)) unused("bound");
   if (p.kind != ProbeKind::section) unused("normal");
+  if (p.kind != ProbeKind::extent) unused("gap");
   if (p.kind != ProbeKind::remesh) unused("quantity");
   if (p.kind != ProbeKind::energy) unused("energy");
   if (p.kind != ProbeKind::wall_force && p.kind != ProbeKind::penetration) unused("wall");

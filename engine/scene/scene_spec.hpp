@@ -255,6 +255,7 @@ struct ProbeSpec {
   std::string group;          // point, stress: a physical point of the mesh file instead of `at` (resolved into `at`)
   Index body = kNoIndex;      // point (kNoIndex: any body), extent and pressure_jump
   bool max = true;            // extent: largest (true) or smallest coordinate
+  double gap = 0.0;           // extent of particles (> 0): stop at the first gap wider than this (detached particles)
   RemeshQuantity quantity = RemeshQuantity::area_change;  // remesh
   Index inlet = kNoIndex;     // volume, mass: only the part of the body downstream of this inlet's section
   Vec3 normal = Vec3::Zero();  // section (3D): the unit normal of the plane through `at` that cuts the body

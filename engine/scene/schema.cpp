@@ -357,6 +357,10 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].normal", K::vec2, "Of a section probe (3D): the normal of the cutting plane (need not be a unit vector)."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
   s.push_back(key("probe[].body", K::string, "Body of a point probe (default: nearest node of any body), of an extent or pressure_jump probe (default: the only body)."));
+  s.push_back(key("probe[].gap", K::real,
+                  "An extent probe of method mpm's particles: the extent of the particles reached from the other end without a gap "
+                  "wider than this along the component, so that particles detached from the body's edge (a granular front's "
+                  "strays) do not count (absent: every particle).").above(0));
   s.push_back(key("probe[].bound", K::choice, "Which extent (of an extent probe, or a section probe's x, y or z): max or min.").one_of({"max", "min"}).by_default("max"));
   s.push_back(key("probe[].reference", K::real,
                   "A reference value of the probe (a converged solution, a closed form, a measurement): at the end of a run loom "

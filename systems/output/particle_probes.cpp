@@ -1,7 +1,9 @@
 #include "systems/output/particle_probes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "engine/mesh/quad9_shape.hpp"
 #include "systems/output/elastic_energy.hpp"
@@ -44,6 +46,17 @@ void add_fem_energy(const StepContext& ctx, const std::vector<BodyMaterial>& mat
       if (!bc.fem_body_force.empty()) potential -= rho * V0 * bc.fem_body_force[std::size_t(9 * (c - first)) + q].dot(u);
     }
   }
+}
+
+// The largest (max) or smallest coordinate reached from the other end of the sorted coordinates without a step
+// wider than gap.
+double extent_before_gap(std::vector<double>& x, bool max, double gap) {
+  if (x.empty()) return max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  std::sort(x.begin(), x.end());
+  if (!max) std::reverse(x.begin(), x.end());
+  std::size_t i = 0;
+  while (i + 1 < x.size() && std::abs(x[i + 1] - x[i]) <= gap) ++i;
+  return x[i];
 }
 
 }  // namespace
@@ -93,13 +106,15 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
       case ProbeKind::newton: values[k] = newton_iterations; break;
       case ProbeKind::extent: {
         double e = p.max ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+        std::vector<double> along;
         for (Index i = 0; i < particles.X.size(); ++i) {
           if (p.body != kNoIndex && particles.body[i] != p.body) continue;  // several bodies: the probe's
           const auto at = particles.position(i);
           const double x = p.component == 4 ? std::hypot(at[0], at[1]) : at[p.component];  // 4: r, the distance from the z axis
           e = p.max ? std::max(e, x) : std::min(e, x);
+          if (p.gap > 0.0) along.push_back(x);
         }
-        values[k] = e;
+        values[k] = p.gap > 0.0 ? extent_before_gap(along, p.max, p.gap) : e;
         break;
       }
       case ProbeKind::energy: {

@@ -50,6 +50,7 @@ const std::map<std::string, Case>& cases() {
       {"cooks_membrane", {3, {"body[0].mesh.divisions=[16,16]"}}},
       {"constrained_block_pfem", {6, {}}},
       {"constrained_block_pfem_3d", {6, {}}},
+      {"granular_collapse_mpm", {6, {}}},
       {"moderate_block_pfem_3d", {6, {}}},
       {"cooks_membrane_3d", {3, {}}},
       {"cooks_membrane_es", {3, {}}},

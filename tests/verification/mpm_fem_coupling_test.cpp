@@ -283,6 +283,7 @@ TEST(MpmFemCoupling, TheClampCarriesTheWeightOfABlockOnThePlate) {
 
 // Method mpm with several bodies (scheme particle_newmark, the MPM side of the B4 comparison): two disks in cells of
 // their own, each under its own body force, fall as Newmark's closed form says, each particle by its body's force.
+// Extent probes with a gap stop at the first step between the sorted coordinates wider than it.
 TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
   const std::string text =
       "[scene]\nname = \"two-disks\"\nmethod = \"mpm\"\n"
@@ -299,6 +300,11 @@ TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
       "body_force = { y = -4.0 }\n"
       "[grid]\ncells = \"quad9\"\ngenerator = \"rectangle\"\norigin = [-2.0, -2.0]\nsize = [4.0, 3.0]\ndivisions = [4, 3]\nrefinements = 2\n"
       "[[probe]]\nname = \"low_b\"\nkind = \"extent\"\ncomponent = \"y\"\nbound = \"min\"\nbody = \"b\"\n"
+      // Extents with a gap: one wider than the disk stops nowhere; a narrow one at the first wider step between the
+      // sorted x of the particles of body a, from the other end.
+      "[[probe]]\nname = \"right_of_a\"\nkind = \"extent\"\ncomponent = \"x\"\nbody = \"a\"\ngap = 1.0\n"
+      "[[probe]]\nname = \"right_of_a_narrow\"\nkind = \"extent\"\ncomponent = \"x\"\nbody = \"a\"\ngap = 0.012\n"
+      "[[probe]]\nname = \"left_of_a_narrow\"\nkind = \"extent\"\ncomponent = \"x\"\nbody = \"a\"\nbound = \"min\"\ngap = 0.012\n"
       "[output]\nevery = 0\n";
   testing::TempDir dir("two_disks");
   auto run = testing::make_mpm_run(testing::scene_from_text(text), dir.path());
@@ -306,7 +312,9 @@ TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
   ASSERT_TRUE(summary.converged) << summary.failure;
   const Points<2>& particles = run->model().particles;
   double worst = 0.0, low_b = 1e300;
+  std::vector<double> xa;  // body a's x, sorted below
   for (Index p = 0; p < particles.X.size(); ++p) {
+    if (particles.body[p] == 0) xa.push_back(particles.position(p).x());
     const double g = particles.body[p] == 0 ? -9.81 : -4.0;
     // The default start, a_0 = each particle's body force: g t^2 / 2 exactly.
     worst = std::max(worst, (particles.u[p] - Vec2(0.0, g * u_factor(kSteps, false))).norm() / std::abs(g * u_factor(kSteps, false)));
@@ -314,7 +322,17 @@ TEST(MpmSeveralBodies, TwoDisksOnOneGridFallEachByItsOwnBodyForce) {
   }
   EXPECT_LE(worst, 1e-10);
   // The extent probe reads its body only (body a, under more gravity, ends 0.7 m lower).
-  EXPECT_NEAR(testing::read_probes(dir.file("probes.csv")).column("low_b").back(), low_b, 1e-12);
+  const testing::ProbeTable probes = testing::read_probes(dir.file("probes.csv"));
+  EXPECT_NEAR(probes.column("low_b").back(), low_b, 1e-12);
+  std::sort(xa.begin(), xa.end());
+  std::size_t up = 0, down = xa.size() - 1;
+  while (up + 1 < xa.size() && xa[up + 1] - xa[up] <= 0.012) ++up;
+  while (down > 0 && xa[down] - xa[down - 1] <= 0.012) --down;
+  EXPECT_NEAR(probes.column("right_of_a").back(), xa.back(), 1e-12);
+  EXPECT_NEAR(probes.column("right_of_a_narrow").back(), xa[up], 1e-12);
+  EXPECT_NEAR(probes.column("left_of_a_narrow").back(), xa[down], 1e-12);
+  EXPECT_LT(xa[up], xa.back() - 0.1);  // the narrow gap stops inside the disk
+  EXPECT_GT(xa[down], xa.front() + 0.1);
   std::printf("[mpm, two bodies] %d particles: u against each body's closed form %.1e\n", int(particles.X.size()), worst);
 }
 
