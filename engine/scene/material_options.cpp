@@ -19,7 +19,10 @@ void read_hencky_perzyna(MaterialSpec& m, const TableReader& t) {
 }
 
 void read_drucker_prager(MaterialSpec& m, const TableReader& t, int dimension) {
-  if (!t.has("friction_angle")) t.error("", "model = \"drucker_prager\" needs friction_angle (degrees)");
+  if (!t.has("friction_angle")) {  // the checks below would only repeat it
+    t.error("model", "model = \"drucker_prager\" needs friction_angle (degrees)");
+    return;
+  }
   m.friction_angle = t.real("friction_angle");
   m.dilatancy_angle = t.real("dilatancy_angle");
   m.cohesion = t.real("cohesion");

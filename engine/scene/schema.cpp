@@ -118,7 +118,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("material[].cohesion", K::real, "drucker_prager: cohesion c (0: a cohesionless material, which carries no tension).")
                   .by_default("0").at_least(0));
   s.push_back(key("material[].cone", K::choice,
-                  "drucker_prager: the Mohr-Coulomb section the cone matches: plane_strain (collapse loads of plane strain), "
+                  "drucker_prager: the Mohr-Coulomb section the cone matches: plane_strain (plane-strain collapse with associated "
+                  "flow; with dilatancy_angle 0 its in-plane friction angle is asin(eta), 28.7 degrees for 30), "
                   "compression (outer cone, triaxial compression) or extension (inner cone). Default: plane_strain in 2D, "
                   "compression in 3D.").one_of({"plane_strain", "compression", "extension"}));
   s.push_back(key("material[].density", K::real, "Reference mass density rho_0 (needed by dynamic integrators and body forces).").by_default("0").at_least(0));
@@ -360,7 +361,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].gap", K::real,
                   "An extent probe of method mpm's particles: the extent of the particles reached from the other end without a gap "
                   "wider than this along the component, so that particles detached from the body's edge (a granular front's "
-                  "strays) do not count (absent: every particle).").above(0));
+                  "strays) do not count (absent: every particle). The walk starts at the other end's particle: give it a body "
+                  "held there (a wall), since a stray at that end stops it at once.").above(0));
   s.push_back(key("probe[].bound", K::choice, "Which extent (of an extent probe, or a section probe's x, y or z): max or min.").one_of({"max", "min"}).by_default("max"));
   s.push_back(key("probe[].reference", K::real,
                   "A reference value of the probe (a converged solution, a closed form, a measurement): at the end of a run loom "
