@@ -37,6 +37,7 @@ const std::map<std::string, Case>& cases() {
       {"bouncing_disk", {6, {"time.end=0.03"}}},
       {"bouncing_disk_mpm_plate", {6, {"time.end=0.03"}}},
       {"cantilever_dynamic_es", {6, {}}},
+      {"cantilever_dynamic_mpm", {6, {}}},
       {"cantilever_mpm_grid_newmark", {6, {}}},
       {"cantilever_mpm_particle", {6, {}}},
       {"channel_flow_es", {6, {}}},
