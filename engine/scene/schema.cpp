@@ -118,8 +118,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("material[].cohesion", K::real, "drucker_prager: cohesion c (0: a cohesionless material, which carries no tension).")
                   .by_default("0").at_least(0));
   s.push_back(key("material[].cone", K::choice,
-                  "drucker_prager: the Mohr-Coulomb section the cone matches: plane_strain (plane-strain collapse with associated "
-                  "flow; with dilatancy_angle 0 its in-plane friction angle is asin(eta), 28.7 degrees for 30), "
+                  "drucker_prager: the Mohr-Coulomb section the cone matches: plane_strain (Mohr-Coulomb's friction and "
+                  "dilatancy in the plane, for any dilatancy_angle, where the flow has no out-of-plane part), "
                   "compression (outer cone, triaxial compression) or extension (inner cone). Default: plane_strain in 2D, "
                   "compression in 3D.").one_of({"plane_strain", "compression", "extension"}));
   s.push_back(key("material[].density", K::real, "Reference mass density rho_0 (needed by dynamic integrators and body forces).").by_default("0").at_least(0));

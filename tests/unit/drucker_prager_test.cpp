@@ -51,16 +51,27 @@ TEST(DruckerPrager, OuterAndInnerConesPassThroughMohrCoulombsMeridians) {
   }
 }
 
-// The plane-strain cone: a state on it whose associated flow has no out-of-plane component (s3 = -2 q eta / 3) is on
-// Mohr-Coulomb in the plane, so both give the same plane-strain collapse.
+// The plane-strain cone: a state on it whose flow has no out-of-plane component (s3 = -2 q eta_bar / 3) is on
+// Mohr-Coulomb in the plane, and its in-plane flow dilates at the angle psi, for associated and non-associated flow;
+// with psi = phi the cone is de Souza Neto's 3 tan phi / sqrt(9 + 12 tan^2 phi).
 TEST(DruckerPrager, PlaneStrainConeMatchesMohrCoulombWhereTheFlowIsPlane) {
   const double phi = 32.0 * kDegree, c = 7.0;
-  const DruckerPrager dp = DruckerPrager::from_mohr_coulomb(phi, phi, c, DruckerPragerCone::plane_strain);
-  for (const double p : {-20.0, -400.0}) {
-    const double q = dp.xi_c - dp.eta * p, s3 = -2.0 * q * dp.eta / 3.0, d = std::sqrt(4 * q * q - 3 * s3 * s3);
-    const double s1 = p + (-s3 + d) / 2, s2 = p + (-s3 - d) / 2;
-    EXPECT_NEAR(mohr_coulomb(s1, s2, phi, c), 0.0, 1e-12 * std::abs(p));
+  for (const double psi : {0.0, 10.0 * kDegree, phi}) {
+    const DruckerPrager dp = DruckerPrager::from_mohr_coulomb(phi, psi, c, DruckerPragerCone::plane_strain);
+    for (const double p : {-20.0, -400.0}) {
+      const double q = dp.xi_c - dp.eta * p, s3 = -2.0 * q * dp.eta_bar / 3.0, d = std::sqrt(4 * q * q - 3 * s3 * s3);
+      const double s1 = p + (-s3 + d) / 2, s2 = p + (-s3 - d) / 2;
+      EXPECT_NEAR(mohr_coulomb(s1, s2, phi, c), 0.0, 1e-12 * std::abs(p)) << "psi " << psi;
+      // The flow s_A / (2q) + eta_bar / 3: none out of the plane, in-plane dilatancy sin psi.
+      const Vec3 s(s1 - p, s2 - p, s3), flow = s / (2 * q) + Vec3::Constant(dp.eta_bar / 3);
+      EXPECT_NEAR(flow[2], 0.0, 1e-14);
+      EXPECT_NEAR((flow[0] + flow[1]) / (flow[0] - flow[1]), std::sin(psi), 1e-14);
+    }
   }
+  const double t = std::tan(phi);
+  const DruckerPrager associated = DruckerPrager::from_mohr_coulomb(phi, phi, c, DruckerPragerCone::plane_strain);
+  EXPECT_NEAR(associated.eta, 3 * t / std::sqrt(9 + 12 * t * t), 1e-15);
+  EXPECT_NEAR(associated.xi_c, 3 * c / std::sqrt(9 + 12 * t * t), 1e-14);
 }
 
 // Trial strains on the cone's side, its apex's side and inside, for associated and non-associated flow.

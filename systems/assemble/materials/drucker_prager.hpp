@@ -20,10 +20,16 @@
 // d dgamma / d eps_B = (sqrt2 G n^_B + eta K) / H; unsymmetric unless eta_bar = eta.
 //
 // Cones matched to Mohr-Coulomb (friction angle phi, dilatancy psi, cohesion c; de Souza Neto §6.4.2):
-//   plane strain  eta = 3 tan phi / sqrt(9 + 12 tan^2 phi),       xi = 3 / sqrt(9 + 12 tan^2 phi)
 //   compression   eta = 6 sin phi / (sqrt3 (3 - sin phi)),        xi = 6 cos phi / (sqrt3 (3 - sin phi))  (outer cone)
 //   extension     eta = 6 sin phi / (sqrt3 (3 + sin phi)),        xi = 6 cos phi / (sqrt3 (3 + sin phi))  (inner cone)
-// and eta_bar the same function of psi as eta is of phi.
+// with eta_bar the same function of psi as eta is of phi; and in plane strain, where the flow has no out-of-plane
+// part (s_3 = -2 q eta_bar / 3), matched in the plane for any psi:
+//   eta_bar = 3 sin psi / sqrt(9 + 3 sin^2 psi)   (in-plane dilatancy: -d eps_v / (d eps_1 - d eps_2) = sin psi)
+//   k = sqrt(1 - eta_bar^2 / 3) + eta_bar sin phi / 3,  eta = sin phi / k,  xi = cos phi / k
+// (the in-plane circle has radius q sqrt(1 - eta_bar^2 / 3) and centre p + q eta_bar / 3; Mohr-Coulomb's
+// R = c cos phi - centre sin phi then reads q k = c cos phi - p sin phi). With psi = phi this is de Souza Neto's
+// 3 tan phi / sqrt(9 + 12 tan^2 phi) and 3 / sqrt(...); with psi = 0 it is sin phi and cos phi (that formula would
+// give the material an in-plane friction angle of asin(eta), 28.7 degrees for 30).
 #pragma once
 
 #include <cmath>
@@ -41,16 +47,15 @@ struct DruckerPrager {
 
   // Angles in radians.
   static DruckerPrager from_mohr_coulomb(double friction, double dilatancy, double cohesion, DruckerPragerCone cone) {
-    const auto slope = [cone](double angle) {
-      const double t = std::tan(angle), s = std::sin(angle);
-      if (cone == DruckerPragerCone::plane_strain) return 3.0 * t / std::sqrt(9.0 + 12.0 * t * t);
-      return 6.0 * s / (std::sqrt(3.0) * (cone == DruckerPragerCone::compression ? 3.0 - s : 3.0 + s));
-    };
-    const double t = std::tan(friction), s = std::sin(friction);
-    const double xi = cone == DruckerPragerCone::plane_strain
-                          ? 3.0 / std::sqrt(9.0 + 12.0 * t * t)
-                          : 6.0 * std::cos(friction) / (std::sqrt(3.0) * (cone == DruckerPragerCone::compression ? 3.0 - s : 3.0 + s));
-    return {slope(friction), slope(dilatancy), xi * cohesion};
+    const double s = std::sin(friction), c = std::cos(friction), sd = std::sin(dilatancy);
+    if (cone == DruckerPragerCone::plane_strain) {
+      const double eta_bar = 3.0 * sd / std::sqrt(9.0 + 3.0 * sd * sd);
+      const double k = std::sqrt(1.0 - eta_bar * eta_bar / 3.0) + eta_bar * s / 3.0;
+      return {s / k, eta_bar, c / k * cohesion};
+    }
+    const double lode = cone == DruckerPragerCone::compression ? -1.0 : 1.0;  // 3 - sin or 3 + sin
+    return {6.0 * s / (std::sqrt(3.0) * (3.0 + lode * s)), 6.0 * sd / (std::sqrt(3.0) * (3.0 + lode * sd)),
+            6.0 * c / (std::sqrt(3.0) * (3.0 + lode * s)) * cohesion};
   }
 
   double yield(double q, double p) const { return q + eta * p - xi_c; }
