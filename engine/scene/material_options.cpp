@@ -1,10 +1,10 @@
 #include "engine/scene/material_options.hpp"
 
-#include "engine/scene/loader_support.hpp"
-
 #include <initializer_list>
 #include <sstream>
 #include <string>
+
+#include "engine/scene/loader_support.hpp"
 
 namespace loom {
 namespace {
