@@ -1,5 +1,6 @@
 #include "engine/mesh/tet_background_grid.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <utility>

@@ -1,5 +1,6 @@
 #include "engine/mesh/tet_generators.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -1,5 +1,6 @@
 #include "systems/assemble/wall_contact.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 
 #include "engine/core/parallel.hpp"

@@ -1,5 +1,6 @@
 #include "systems/loads/apply_boundary_conditions.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "engine/mesh/quad9_shape.hpp"

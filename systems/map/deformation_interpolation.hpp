@@ -12,10 +12,9 @@
 #include <cmath>
 
 #include "engine/core/types.hpp"
+#include "systems/map/iso_mode.hpp"
 
 namespace loom {
-
-enum class IsoMode { iso0, iso1, iso2 };
 
 // log U and log R of F = R U (det F > 0).
 struct PolarLog {

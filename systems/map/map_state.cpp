@@ -12,6 +12,7 @@
 
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
+#include "systems/map/deformation_interpolation.hpp"
 
 namespace loom {
 namespace {

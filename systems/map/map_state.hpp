@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "engine/core/types.hpp"
-#include "systems/map/deformation_interpolation.hpp"
+#include "systems/map/iso_mode.hpp"
 
 namespace loom {
 

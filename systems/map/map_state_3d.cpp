@@ -8,11 +8,13 @@
 #include <CGAL/property_map.h>
 #include <CGAL/spatial_sort.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <atomic>
 
 #include "engine/core/errors.hpp"
 #include "engine/core/parallel.hpp"
+#include "systems/map/deformation_interpolation.hpp"
 #include "systems/map/map_state.hpp"
 
 namespace loom {

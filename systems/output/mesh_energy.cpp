@@ -1,5 +1,6 @@
 #include "systems/output/mesh_energy.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <variant>
 

@@ -1,5 +1,6 @@
 #include "systems/output/particle_probes.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>

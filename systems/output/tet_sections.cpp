@@ -1,5 +1,6 @@
 #include "systems/output/tet_sections.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "engine/mesh/tet_mesh.hpp"

@@ -1,5 +1,6 @@
 #include "systems/remesh/delaunay_check.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>

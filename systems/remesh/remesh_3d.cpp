@@ -5,6 +5,7 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>  // determinant
 
 #include <algorithm>

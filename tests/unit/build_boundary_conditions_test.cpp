@@ -10,6 +10,7 @@
 //    gives the same faces;
 //  - PFEM ties only the mid-nodes of the loaded edges (and of the clamp's), not those the normal left out;
 //  - a direction no edge of the region faces is an InputError naming region.normal.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>

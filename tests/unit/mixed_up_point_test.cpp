@@ -4,6 +4,7 @@
 // (OSGS: with the pressure part of the projected R_p following the pressure, see residual());
 // the Galerkin coupling blocks are each other's negative transpose (B = B*, eq 18); PPP annihilates
 // constant pressures.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>

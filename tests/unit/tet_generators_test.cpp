@@ -2,6 +2,7 @@
 // (every interior face shared by exactly two tetrahedra, boundary faces only on the outline), positively
 // oriented, and fill their volume; the boundary faces are closed and point outwards (divergence theorem);
 // the interior distortion keeps the outline and the volume; tet10 adds one node per edge (Euler's formula).
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <set>

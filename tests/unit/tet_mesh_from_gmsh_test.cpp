@@ -3,6 +3,7 @@
 // is closed and points outwards; the 10-node cells' mid-nodes sit at the midpoints of the edges VTK's order names
 // (which checks the turn from gmsh's edge order); the physical groups become regions; the files loom cannot use
 // are input errors naming the file.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <set>

@@ -6,6 +6,7 @@
 //  - the Newtonian square duct (scenes/newtonian_duct_3d.toml, tau0 = 0): the centre velocity within 1 % of
 //    0.29469 F a^2 / mu = 5.8937 m/s on 8 x 8 cells of the section, the flow rate within 1 % of 0.11246 m^3/s on 16 x 16
 //    (on 8 x 8 the linear interpolant's integral is 3 % low; see the test).
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>

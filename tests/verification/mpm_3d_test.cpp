@@ -16,6 +16,7 @@
 //    (docs/fem_3d.md, tet10 h = 0.25) within the discretisation error docs/mpm/mpm_3d.md measures, and never gain
 //    energy (the grid-Newmark transfers only dissipate);
 //  - 3D scene errors: a rule the tetrahedron does not have, the particle Newmark scheme.
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <oneapi/tbb/global_control.h>

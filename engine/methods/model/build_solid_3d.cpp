@@ -1,5 +1,6 @@
 #include "engine/methods/model/build_solid_3d.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <sstream>
 

@@ -3,6 +3,7 @@
 // body's tetrahedral mesh (engine/mesh/tet_particles.hpp), the grid's boundary conditions, point-probe tracers.
 // 3D runs take method mpm with the grid Newmark scheme and no ghost penalty; the 2D-only members of MpmModelT
 // stay empty. Tractions act at traction points on the loaded boundary faces of the body mesh.
+#include <Eigen/Geometry>
 #include <sstream>
 
 #include "engine/core/errors.hpp"

@@ -26,13 +26,10 @@
 // does not hold for it; and it needs the full stress (`deviatoric` false): the pressure is in its yield function.
 #pragma once
 
-#include <Eigen/Eigenvalues>
-#include <cmath>
 #include <limits>
 #include <optional>
 
 #include "systems/assemble/materials/drucker_prager.hpp"
-#include "systems/assemble/materials/first_piola.hpp"
 #include "systems/assemble/materials/tensor9.hpp"
 
 namespace loom {
@@ -47,6 +44,9 @@ struct HistoryResponse {
   double tau_eq = 0.0;      // equivalent stress after the return map
 };
 
+// The functions are defined in hencky_perzyna.cpp: their spectral decomposition (Eigen's 3x3 eigensolver) is the
+// costliest code to compile of all the headers the engine's and tests' units include through material.hpp, and a
+// call per integration point costs nothing beside the decomposition it makes.
 struct HenckyPerzyna {
   double K = 0.0, G = 0.0;
   double tau0 = std::numeric_limits<double>::infinity();  // shear yield stress; infinite: Hencky elastic
@@ -55,109 +55,24 @@ struct HenckyPerzyna {
 
   // The stored energy per unit reference volume of an elastic state b^e (eq 19): G sum_A (dev eps_A)^2 + K/2 (ln J)^2,
   // eps_A = 1/2 ln of b^e's eigenvalues (G sum eps_A^2 + 1/2 (K - 2G/3) (ln J)^2 written with the deviator).
-  double energy(const Mat3& be) const {
-    const Eigen::SelfAdjointEigenSolver<Mat3> eig(be, Eigen::EigenvaluesOnly);
-    const Vec3 eps = 0.5 * eig.eigenvalues().array().log().matrix();
-    const double theta = eps.sum();
-    return G * (eps - Vec3::Constant(theta / 3.0)).squaredNorm() + 0.5 * K * theta * theta;
-  }
+  double energy(const Mat3& be) const;
 
   // The Kirchhoff stress of an elastic state b^e (eq 19's derivative): tau = sum_A (2G dev eps_A + K theta) n_A (x) n_A.
-  Mat3 kirchhoff(const Mat3& be) const {
-    HistoryResponse r;
-    if (!elastic_update(Mat3::Identity(), be, false, r)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
-    return r.tau;
-  }
+  Mat3 kirchhoff(const Mat3& be) const;
 
   // The return map from the incremental deformation f = F F_n^-1 and the converged b^e_n over dt. false if
   // det f <= 0 (the state does not exist).
-  bool update(const Mat3& f, const Mat3& be_n, double dt, bool deviatoric, bool tangent, HistoryResponse& out) const {
-    const Mat3 be_tr = f * be_n * f.transpose();
-    const Eigen::SelfAdjointEigenSolver<Mat3> eig(be_tr);
-    const Vec3 w = eig.eigenvalues();
-    if (!(w.minCoeff() > 0.0) || !(f.determinant() > 0.0)) return false;
-    const Mat3& n = eig.eigenvectors();
-    Vec3 eps = 0.5 * w.array().log().matrix();
-    const double theta = eps.sum();
-    const Vec3 s = 2.0 * G * (eps - Vec3::Constant(theta / 3.0));
-    const double q = std::sqrt(0.5 * s.squaredNorm());
-    const Mat3 dev = Mat3::Identity() - Mat3::Constant(1.0 / 3.0);
-    Vec3 t = s;
-    Mat3 a = 2.0 * G * dev;
-    if (friction) {
-      if (deviatoric) return false;  // its yield function needs the pressure: the scene checks refuse mixed elements
-      out.plastic = friction->return_map(K, G, eps, t, a, out.tau_eq);
-    } else {
-      out.plastic = q > tau0;
-      out.tau_eq = q;
-    }
-    if (out.plastic && !friction) {
-      const double H = G + viscosity / dt;
-      const double dgamma = (q - tau0) / H;
-      const double factor = 1.0 - G * dgamma / q;
-      const Vec3 nh = s / (std::sqrt(2.0) * q);
-      t = factor * s;
-      a = 2.0 * G * factor * dev - 2.0 * G * (G * tau0 / (H * q)) * nh * nh.transpose();
-      eps -= dgamma / (2.0 * q) * s;
-      out.tau_eq = factor * q;
-    }
-    if (!deviatoric && !friction) t.array() += K * theta, a.array() += K;
-    // Elastic: b^e is the trial state itself (rebuilding it from the spectral form would only add round-off,
-    // and a body at rest would drift by it step after step).
-    out.be = out.plastic ? Mat3(n * eps.array().exp().square().matrix().asDiagonal() * n.transpose()) : be_tr;
-    out.tau = n * t.asDiagonal() * n.transpose();
-    out.J = std::exp(theta);
-    if (tangent) out.c_tau = spatial_tangent(n, w, t, a);
-    return true;
-  }
+  bool update(const Mat3& f, const Mat3& be_n, double dt, bool deviatoric, bool tangent, HistoryResponse& out) const;
 
   // The hyperelastic interface (elements without history): elastic Hencky from F, b^e = F F^T. Plasticity is
   // not seen here; the scene checks refuse tau0 on such elements.
-  bool stress(const Mat3& F, Mat3& P) const {
-    HistoryResponse r;
-    if (!elastic(F, false, r)) return false;
-    P = r.tau * F.inverse().transpose();
-    return true;
-  }
-  bool stress_tangent(const Mat3& F, Mat3& P, Mat9& A) const {
-    HistoryResponse r;
-    if (!elastic(F, true, r)) return false;
-    first_piola(F, r.tau, r.c_tau, 1.0, P, A);
-    return true;
-  }
+  bool stress(const Mat3& F, Mat3& P) const;
+  bool stress_tangent(const Mat3& F, Mat3& P, Mat9& A) const;
 
  private:
   bool elastic(const Mat3& F, bool tangent, HistoryResponse& r) const { return elastic_update(F, Mat3::Identity(), tangent, r); }
-  bool elastic_update(const Mat3& f, const Mat3& be_n, bool tangent, HistoryResponse& r) const {
-    HenckyPerzyna e = *this;
-    e.tau0 = std::numeric_limits<double>::infinity();
-    e.friction.reset();
-    return e.update(f, be_n, 1.0, false, tangent, r);
-  }
-
-  static Mat9 spatial_tangent(const Mat3& n, const Vec3& w, const Vec3& t, const Mat3& a) {
-    // m[A][B] = vec(n_A (x) n_B), row-major, so that n_ABCD = m[A][B] m[C][D]^T.
-    Eigen::Matrix<double, 9, 1> m[3][3];
-    for (int A = 0; A < 3; ++A)
-      for (int B = 0; B < 3; ++B) {
-        const Mat3 nn = n.col(A) * n.col(B).transpose();
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) m[A][B][ij(i, j)] = nn(i, j);
-      }
-    Mat9 c = Mat9::Zero();
-    for (int A = 0; A < 3; ++A) {
-      for (int B = 0; B < 3; ++B) c += a(A, B) * m[A][A] * m[B][B].transpose();
-      c -= 2.0 * t[A] * m[A][A] * m[A][A].transpose();
-      for (int B = 0; B < 3; ++B) {
-        if (A == B) continue;
-        // Below sqrt(eps) relative separation the quotient loses more digits than the limit's O(d) error.
-        const double g = std::abs(w[A] - w[B]) > 1.5e-8 * w.maxCoeff() ? (t[A] * w[B] - t[B] * w[A]) / (w[A] - w[B])
-                                                                        : 0.5 * (a(A, A) - a(A, B)) - t[A];
-        c += g * (m[A][B] * m[A][B].transpose() + m[A][B] * m[B][A].transpose());
-      }
-    }
-    return c;
-  }
+  bool elastic_update(const Mat3& f, const Mat3& be_n, bool tangent, HistoryResponse& r) const;
+  static Mat9 spatial_tangent(const Mat3& n, const Vec3& w, const Vec3& t, const Mat3& a);
 };
 
 }  // namespace loom
