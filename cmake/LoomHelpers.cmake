@@ -1,12 +1,5 @@
 # Helpers shared by every target of the build.
 
-# Compiled into every program (the loom command, each test and benchmark), not into a library: the process's
-# allocator policy (engine/core/allocator.hpp) and the OpenMP regions of one (engine/linalg/openmp_regions_of_one.cpp),
-# which must be the executable's own to take effect.
-set(LOOM_PROGRAM_SOURCES
-  ${PROJECT_SOURCE_DIR}/engine/core/allocator_at_start.cpp
-  ${PROJECT_SOURCE_DIR}/engine/linalg/openmp_regions_of_one.cpp)
-
 # A program built with LOOM_PROGRAM_SOURCES exports its GOMP_parallel, so that the libraries' calls bind to it (the
 # linker would export it anyway while a library on the link line imports it; this says so).
 function(loom_program target)
@@ -19,6 +12,17 @@ function(loom_set_warnings target)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
 endfunction()
+
+# Linked into every program (the loom command, each test and benchmark), not from a library: the process's
+# allocator policy (engine/core/allocator.hpp) and the OpenMP regions of one (engine/linalg/openmp_regions_of_one.cpp),
+# which must be the executable's own to take effect. Compiled once, as object files that every program's link names
+# (an object on the link line is always linked, unlike a static library's member nobody refers to).
+add_library(loom_program_objects OBJECT
+  ${PROJECT_SOURCE_DIR}/engine/core/allocator_at_start.cpp
+  ${PROJECT_SOURCE_DIR}/engine/linalg/openmp_regions_of_one.cpp)
+target_include_directories(loom_program_objects PRIVATE ${PROJECT_SOURCE_DIR})
+loom_set_warnings(loom_program_objects)
+set(LOOM_PROGRAM_SOURCES $<TARGET_OBJECTS:loom_program_objects>)
 
 # loom_add_test(NAME name SOURCES a.cpp ... [LABELS unit verification scene stress] [LIBS ...])
 function(loom_add_test)
