@@ -4,7 +4,7 @@
 # perf) and the slowest translation units. The sum of the compile times over the cores' count bounds the wall time
 # from below; -j1 gives times free of contention with the build's own jobs.
 #
-#   tools/build_time.sh [BUILD_DIR (default /tmp/loom_build_time)] [JOBS (default 1)]
+#   tools/build_time.sh [BUILD_DIR (default /tmp/loom_build_time)] [JOBS (default 1)] [TARGET (default all)]
 #   tools/build_time.sh --report LOG      # only the summary of an earlier run's log
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -43,6 +43,7 @@ PY
 if [ "${1:-}" = "--report" ]; then report "$2"; exit 0; fi
 dir=${1:-/tmp/loom_build_time}
 jobs=${2:-1}
+target=${3:-all}
 log="$dir.times"
 rm -rf "$dir" "$log"
 wrapper="$dir.wrap"
@@ -57,6 +58,6 @@ W
 chmod +x "$wrapper"
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER="$wrapper" -DCMAKE_CXX_LINKER_LAUNCHER="$wrapper" > /dev/null
 start=$(date +%s)
-cmake --build "$dir" -j "$jobs" > "$dir.log" 2>&1
-echo "fresh build with -j $jobs: $(( $(date +%s) - start )) s wall (log $dir.log, times $log)"
+cmake --build "$dir" -j "$jobs" --target "$target" > "$dir.log" 2>&1
+echo "fresh build of $target with -j $jobs: $(( $(date +%s) - start )) s wall (log $dir.log, times $log)"
 report "$log"
