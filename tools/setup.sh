@@ -6,6 +6,13 @@
 #   --no-build  the packages only
 set -euo pipefail
 cd "$(dirname "$0")/.."
+case "${1:-}" in
+  --no-build) target=none ;;
+  --all) target=all ;;
+  "") target=loom ;;
+  *) echo "setup: unknown option $1 (--no-build, --all)" >&2; exit 2 ;;
+esac
+
 
 # xvfb: tools/render draws off-screen through an X server of its own (Debian's VTK 9.1 renders through X).
 # Packages are installed without their Recommends, so every recommended package that a test uses is listed:
@@ -30,11 +37,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-case "${1:-}" in
-  --no-build) exit 0 ;;
-  --all) target=all ;;
-  "") target=loom ;;
-  *) echo "setup: unknown option $1 (--no-build, --all)" >&2; exit 2 ;;
-esac
+[ "$target" = none ] && exit 0
 cmake -S . -B build -DCMAKE_BUILD_TYPE="${LOOM_BUILD_TYPE:-Release}" >/dev/null
 cmake --build build -j "${LOOM_JOBS:-$(nproc)}" --target "$target"
