@@ -328,7 +328,7 @@ std::vector<KeySpec> build_schema() {
                   "volume: area of a body in the current configuration; remesh (pfem): a `quantity` of the step's remesh; "
                   "energy (mpm, mpm_fem): kinetic sum m v^2 / 2, elastic sum V_0 psi(F) of the particles (and of the FEM bodies' "
                   "Gauss points, with their consistent mass), total = kinetic + elastic, potential -sum m b . u of the body force "
-                  "at the step's time (u from the start), mechanical = kinetic + elastic + potential; fem and pfem (elements p1, tri6, "
+                  "and -sum f . u of the boundary tractions at the step's time (u from the start), mechanical = kinetic + elastic + potential; fem and pfem (elements p1, tri6, "
                   "quad9, materials neo_hooke and linear_elastic, lumped mass): the same of the nodes' lumped masses and the "
                   "quadrature points, potential -f_ext . u of the nodal external loads; the smoothed elements (es_up, es_u, fem_up, "
                   "fem_u; methods fem and es_pfem): the energy stored in their domains' b^e (es_up and fem_up: its deviatoric part, and "

@@ -56,6 +56,7 @@ struct BoundaryConditions {
   // each carries the traction expressions of its edge (weight: its share of the edge's reference length or area).
   std::vector<std::array<Index, D>> traction_point_expression;
   std::vector<Vec<D>> particle_body_force;  // per particle, at the step time: b per unit mass
+  std::vector<Vec<D>> traction_point_force;  // per traction point, at the step time: its traction times its weight
   std::vector<Vec<D>> fem_body_force;  // method mpm_fem: per Gauss point of the FEM cells (9 per cell, in cell order), b per unit mass
   bool increments = false;  // mpm: `target` holds the step's increment of prescribed displacements
 

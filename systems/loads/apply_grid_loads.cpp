@@ -75,7 +75,8 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<D>&
     }
   });
 
-  // 3. Tractions at the traction points.
+  // 3. Tractions at the traction points (their forces kept for the energy probe's potential of the loads).
+  bc.traction_point_force.resize(std::size_t(traction_points.X.size()));
   for (Index q = 0; q < traction_points.X.size(); ++q) {
     const auto& e = bc.traction_point_expression[std::size_t(q)];
     const Vec<D>& X = traction_points.X[q];
@@ -89,6 +90,7 @@ void apply_grid_loads(const StepContext& ctx, const Cells& grid, const Nodes<D>&
                "traction point " << q << " (reference position " << Coordinates<D>{X} << ") at " << Coordinates<D>{x}
                                  << " has no grid cell holding particles next to it at step " << ctx.step << ": its load cannot reach the body");
     const Vec<D> f = traction_points.volume[q] * t;
+    bc.traction_point_force[std::size_t(q)] = f;
     for (int a = 0; a < grid.stride; ++a)
       for (int d = 0; d < D; ++d) bc.external[pn * grid.node(c, a) + d] += N[a] * f[d];
   }

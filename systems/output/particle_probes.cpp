@@ -86,7 +86,8 @@ double pressure_jump(const GridView<2>& g) {
 
 template <int D>
 void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                              const Points<D>& particles, const Points<D>& probe_points, const GridView<D>& grid,
+                              const Points<D>& particles, const Points<D>& probe_points, const Points<D>& traction_points,
+                              const GridView<D>& grid,
                               const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                               std::vector<double>& values) {
   values.assign(plan.probes.size(), 0.0);
@@ -128,6 +129,9 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
                                                                       : elastic_energy(m, particles.F[i], mixed, mixed ? particles.pressure[i] : 0.0));
           if (!bc.particle_body_force.empty()) potential -= particles.mass[i] * bc.particle_body_force[std::size_t(i)].dot(particles.u[i]);
         }
+        // Dead loads on the traction points: -f . u, the potential of a load held at its present value.
+        for (std::size_t q = 0; q < bc.traction_point_force.size(); ++q)
+          potential -= bc.traction_point_force[q].dot(traction_points.u[Index(q)]);
         if constexpr (D == 2)
           if (grid.activity.always_active_from != kNoIndex) add_fem_energy(ctx, materials, grid, bc, kinetic, elastic, potential);
         values[k] = p.energy == EnergyPart::kinetic     ? kinetic
@@ -169,10 +173,10 @@ void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& p
 
 
 template void evaluate_particle_probes<2>(const StepContext&, const ParticleProbePlan&, const std::vector<BodyMaterial>&, const Points<2>&,
-                                          const Points<2>&, const GridView<2>&, const LinearSystem&, const BoundaryConditions<2>&, int,
+                                          const Points<2>&, const Points<2>&, const GridView<2>&, const LinearSystem&, const BoundaryConditions<2>&, int,
                                           std::vector<double>&);
 template void evaluate_particle_probes<3>(const StepContext&, const ParticleProbePlan&, const std::vector<BodyMaterial>&, const Points<3>&,
-                                          const Points<3>&, const GridView<3>&, const LinearSystem&, const BoundaryConditions<3>&, int,
+                                          const Points<3>&, const Points<3>&, const GridView<3>&, const LinearSystem&, const BoundaryConditions<3>&, int,
                                           std::vector<double>&);
 
 }  // namespace loom

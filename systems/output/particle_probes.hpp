@@ -41,7 +41,8 @@ struct GridView {
 // D = 2 or 3 (3D: angular_momentum reads the probe's component of sum m r x v; pressure_jump is 2D).
 template <int D>
 void evaluate_particle_probes(const StepContext& ctx, const ParticleProbePlan& plan, const std::vector<BodyMaterial>& materials,
-                              const Points<D>& particles, const Points<D>& probe_points, const GridView<D>& grid,
+                              const Points<D>& particles, const Points<D>& probe_points, const Points<D>& traction_points,
+                              const GridView<D>& grid,
                               const LinearSystem& system, const BoundaryConditions<D>& bc, int newton_iterations,
                               std::vector<double>& values);
 

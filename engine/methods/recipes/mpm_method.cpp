@@ -202,7 +202,7 @@ void MpmRunT<D>::newton_node() {
 
 template <int D>
 void MpmRunT<D>::probes_node() {
-  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, GridView<D>{m_.grid, m_.activity, m_.grid_nodes},
+  evaluate_particle_probes(ctx_, probe_plan_, m_.materials, m_.particles, m_.probe_points, m_.traction_points, GridView<D>{m_.grid, m_.activity, m_.grid_nodes},
                            m_.system, m_.bc, status_.step_iterations, probe_values_);
   if (probe_writer_.is_open()) probe_writer_.write(ctx_.step, ctx_.t, probe_values_);
 }
