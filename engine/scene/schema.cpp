@@ -264,7 +264,7 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("mpm", K::table, "Method mpm: the time scheme and the edge terms of [Aulisa 2019]."));
   s.push_back(key("mpm.scheme", K::choice,
                   "grid_newmark: [Moreno et al.] §3.3, the particles' mass, velocity and acceleration projected to the grid, lumped grid mass, "
-                  "Newmark with beta = 1/4, gamma = 1/2 on the grid; particle_newmark: [Aulisa 2019] §3, nothing projected, the particles "
+                  "Newmark with beta = 1/4, gamma = 1/2 on the grid, the particles taking the grid's velocity increment (FLIP); particle_newmark: [Aulisa 2019] §3, nothing projected, the particles "
                   "are the quadrature points and carry the Newmark state (consistent particle mass; time.beta, time.gamma), with soft "
                   "stiffness and receding contact; displacement element p1 only.")
                   .one_of({"grid_newmark", "particle_newmark"}).by_default("grid_newmark"));

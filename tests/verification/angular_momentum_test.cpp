@@ -70,7 +70,11 @@ TEST(AngularMomentumProbe, OfTheParticlesInMpm) {
   }
   EXPECT_NEAR(run->probe_values().at(0), L, 1e-12 * L0);
   std::printf("[angular momentum] mpm, grid Newmark, 20 steps of 0.05: L / L_0 = %.6f\n", L / L0);
-  EXPECT_LT(std::abs(L - L0) / L0, 0.05);  // a sanity bound: the grid transfers lose some in one second
+  // A sanity bound: the transfers through a grid of two cells across the block lose some in one second. The
+  // projection of a linear field to the lumped grid mass is the field at each node's particle centroid, not at the
+  // node, so PIC/FLIP transfers do not conserve angular momentum: 5.5 % lost here (3.5 % when the particles
+  // took their own old acceleration, the form that gained energy without bound: docs/mpm/velocity_update.md).
+  EXPECT_LT(std::abs(L - L0) / L0, 0.06);
 }
 
 }  // namespace loom
