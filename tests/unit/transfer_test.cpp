@@ -1,6 +1,7 @@
 // systems/map: the particle-grid transfers of seed 003 Algorithm 1 conserve mass and momentum to round-off
 // (STYLE §11 invariants): projection keeps sum m, sum m v, sum m a; interpolation after a Newmark update
-// of the grid gives the particles the grid's momentum; constants and linear fields pass unchanged; the
+// of the grid gives the particles the grid's momentum; a node held in place starts the step at rest and ends
+// it at rest (a = v = 0 from the Newmark update with u = 0), so it passes the particles no velocity increment; constants and linear fields pass unchanged; the
 // projection does not depend on the thread count. On tri3 and on quad4 grids.
 #include <gtest/gtest.h>
 
@@ -14,6 +15,8 @@
 #include "systems/locate/locate_points.hpp"
 #include "systems/map/interpolate_to_particles.hpp"
 #include "systems/map/project_to_grid.hpp"
+#include "systems/map/rest_held_grid_nodes.hpp"
+#include "systems/update/grid_newmark.hpp"
 
 namespace loom {
 namespace {
@@ -103,6 +106,47 @@ TEST_P(Transfer, InterpolationGivesTheParticlesTheGridsMomentumAfterANewmarkStep
   EXPECT_LE((particle_sum(f, [&](Index p) { return Vec2(f.particles.v[p]); }) - grid_mv).norm(), 1e-13 * mass);
   EXPECT_LE((particle_sum(f, [&](Index p) { return Vec2(f.particles.a[p]); }) - grid_ma).norm(), 1e-13 * mass);
   EXPECT_LE((particle_sum(f, [&](Index p) { return Vec2(f.particles.u[p]); }) - grid_mu).norm(), 1e-13 * mass);
+}
+
+TEST_P(Transfer, HeldNodesStartAndEndTheStepAtRestWhileMovingOnesKeepTheProjection) {
+  Fixture f(5000, 4, GetParam());
+  project_to_grid(f.ctx, f.cells, f.particles, f.loc, f.nodes);
+  BoundaryConditions<2> bc;
+  bc.per_node = 3, bc.increments = true;  // p1p1_up: u_x, u_y, p per node
+  bc.target = Eigen::VectorXd::Zero(3 * f.nodes.size());
+  std::vector<char> held(std::size_t(f.nodes.size()), 0), moved(std::size_t(f.nodes.size()), 0);
+  for (Index i = 0; i < f.nodes.size(); ++i) {
+    const bool bottom = f.nodes.X[i].y() < 1e-12, top = f.nodes.X[i].y() > 1.5 - 1e-12;
+    if (!bottom && !top) continue;
+    for (int d = 0; d < 2; ++d) bc.prescribed.push_back({3 * i + d, i, 0});
+    if (top) bc.target[3 * i + 0] = 1e-4, moved[std::size_t(i)] = 1;  // x moves this step, y held
+    else held[std::size_t(i)] = 1;
+  }
+  const Nodes<2> projected = f.nodes;
+  rest_held_grid_nodes(f.ctx, bc, f.nodes);
+  Index n_held = 0;
+  for (Index i = 0; i < f.nodes.size(); ++i) {
+    if (!(f.nodes.lumped_mass[i] > 0.0)) continue;
+    f.nodes.u[i] = Vec2(bc.target[3 * i], bc.target[3 * i + 1]);
+    const Vec2 a = newmark_acceleration(f.nodes, i, f.ctx.dt), v = newmark_velocity(f.nodes, i, a, f.ctx.dt);
+    if (held[std::size_t(i)]) {
+      ++n_held;
+      EXPECT_EQ(a, Vec2::Zero()) << "node " << i;
+      EXPECT_EQ(v, Vec2::Zero()) << "node " << i;
+    } else if (moved[std::size_t(i)]) {
+      EXPECT_EQ(f.nodes.v_n[i].x(), projected.v_n[i].x()) << "node " << i;  // a prescribed motion keeps the projection
+      EXPECT_EQ(f.nodes.v_n[i].y(), 0.0) << "node " << i;
+    } else {
+      EXPECT_EQ(f.nodes.v_n[i], projected.v_n[i]) << "node " << i;
+      EXPECT_EQ(f.nodes.a_n[i], projected.a_n[i]) << "node " << i;
+    }
+  }
+  EXPECT_GT(n_held, 10);
+  // Without the rest, the projected velocity of a held node comes back reversed: v = -v_n.
+  Nodes<2> g = projected;
+  const Index i = [&] { for (Index k = 0;; ++k) if (held[std::size_t(k)] && g.lumped_mass[k] > 0.0) return k; }();
+  g.u[i].setZero();
+  EXPECT_LE((newmark_velocity(g, i, newmark_acceleration(g, i, f.ctx.dt), f.ctx.dt) + g.v_n[i]).norm(), 1e-12 * g.v_n[i].norm());
 }
 
 TEST_P(Transfer, ReproducesConstantsAndLinearFields) {

@@ -26,6 +26,7 @@
 #include "systems/locate/locate_points.hpp"
 #include "systems/map/interpolate_to_particles.hpp"
 #include "systems/map/project_to_grid.hpp"
+#include "systems/map/rest_held_grid_nodes.hpp"
 #include "systems/output/snapshot_particles.hpp"
 #include "systems/update/commit_particle_newmark.hpp"
 #include "systems/update/coupled_fem.hpp"
@@ -107,6 +108,7 @@ void MpmRunT<D>::build_graph() {
   g.add_system("project_to_grid", &project_to_grid<D>, m_.grid, m_.particles, m_.particle_loc, m_.grid_nodes);
   g.add_system("apply_grid_loads", &apply_grid_loads<D>, m_.grid, m_.grid_nodes, m_.activity, m_.particles, m_.particle_loc, m_.traction_points,
                m_.traction_loc, m_.bc);
+  if (m_.dynamic) g.add_system("rest_held_grid_nodes", &rest_held_grid_nodes<D>, m_.bc, m_.grid_nodes);
   // 2. Updated-Lagrangian solve on the grid (lines 17-42).
   g.add_node("newton",
              {{&m_.grid, &m_.activity, &m_.particles, &m_.materials, &m_.bc}, {&m_.grid_nodes, &m_.particle_loc, &m_.system, &status_}},
