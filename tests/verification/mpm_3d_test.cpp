@@ -14,7 +14,7 @@
 //  - a run stopped and restarted from its checkpoint writes the probes of the uninterrupted run, bit for bit;
 //  - the paper's columns at h = 0.25 (4 points per cell) over a few hundred steps stay near loom's FEM reference
 //    (docs/fem_3d.md, tet10 h = 0.25) within the discretisation error docs/mpm/mpm_3d.md measures, and never gain
-//    energy (the grid-Newmark transfers only dissipate);
+//    energy beyond 1e-5 of it (the grid-Newmark transfers dissipate; docs/mpm/velocity_update.md);
 //  - 3D scene errors: a rule the tetrahedron does not have, the particle Newmark scheme.
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -324,11 +324,13 @@ ColumnRun run_column(const std::string& column, int steps) {
   return {probes.column("time"), probes.column("ux_A"), probes.column("uy_A"), probes.column("total"), probes.column("newton")};
 }
 
-// Energy never above its start; Newton steady.
+// Energy never above its start (to 1e-5 of it); Newton steady. Under the grid's velocity increment (FLIP) the
+// particles' kinetic energy is not bounded by the grid's: the bending column's (its held base nodes start each step
+// at rest while the particles next to them move) rose by 1e-6 of E0 in its first step and falls from the second on.
 void check_column_invariants(const ColumnRun& r, double min_kept) {
   const double E0 = r.total.front();
   for (std::size_t k = 0; k < r.total.size(); ++k) {
-    EXPECT_LE(r.total[k], E0 * (1.0 + 1e-9)) << "t = " << r.t[k];
+    EXPECT_LE(r.total[k], E0 * (1.0 + 1e-5)) << "t = " << r.t[k];
     EXPECT_LE(r.newton[k], 10.0) << "t = " << r.t[k];
   }
   EXPECT_GT(r.total.back(), min_kept * E0);
