@@ -47,8 +47,8 @@ void interpolate_to_particles(const StepContext& ctx, const Cells& grid, const N
       // FLIP: the particle takes the increment of the grid's Newmark velocity, v_I^{n+1} - v_I^n =
       // dt ((1 - gamma) a_I^n + gamma a_I^{n+1}), a_I^n the projection of the particles' accelerations that the
       // grid integrated. (Taking the particle's own a_p^n instead adds dt (1 - gamma)(a_p^n - sum N_I a_I^n) each
-      // step, a part of the acceleration no grid equation balanced: it fed back through the projection and grew
-      // without bound once particles crossed cells: docs/mpm/velocity_update.md.)
+      // step, a part of the acceleration no grid equation balanced; the energy grew without bound once particles
+      // crossed cells back and forth: docs/mpm/velocity_update.md.)
       const Vec<D> a_old = interpolate<Vec<D>>(nc, corner, N, g.a_n), a_new = interpolate<Vec<D>>(nc, corner, N, g.a);
       particles.v[p] += ctx.dt * ((1.0 - kNewmarkGamma) * a_old + kNewmarkGamma * a_new);
       particles.a[p] = a_new;
