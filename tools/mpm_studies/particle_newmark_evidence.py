@@ -170,8 +170,9 @@ def cantilever(args):
              ("soft_stiffness_1e-12", p, ["time.steps=400", "mpm.soft_stiffness.c1=1e-12", "mpm.soft_stiffness.c2=1e-12"], None),
              ("soft_stiffness_1e-4", p, ["time.steps=400", "mpm.soft_stiffness.c1=1e-4", "mpm.soft_stiffness.c2=1e-4"], None),
              ("soft_stiffness_off", p, ["mpm.soft_stiffness.c1=0", "mpm.soft_stiffness.c2=0"], None),
-             ("newton_1e-11", p, ["time.steps=400", "solver.residual_relative=1e-11"], None),
-             ("beta_0.25", p, ["time.beta=0.25"], None)]
+             ("newton_1e-11", p, ["time.steps=400", "solver.residual_relative=1e-11"], None)]
+    # beta = 1/4 (2 beta = gamma) is refused by the scene checks since it was run here: the particles' energy grew
+    # 6.8-fold in 125 steps (the double eigenvalue -1 the refusal names).
 
     rows, hist = [], {}
     for name, scene, sets, label in runs:
