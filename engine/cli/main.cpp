@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/cli/mpi_launch.hpp"
 #include "engine/core/errors.hpp"
 #include "engine/core/interrupt.hpp"
 #include "engine/io/console_format.hpp"
@@ -133,26 +134,34 @@ void print_probes(const loom::SceneSpec& scene, const loom::RunSummary& summary,
   }
 }
 
-int run(const Args& a) {
+// Under `mpirun -n N` every rank runs; rank 0 alone prints and writes (engine/cli/mpi_launch.hpp).
+int run(const Args& a, const loom::MpiLaunch& launch) {
   std::optional<oneapi::tbb::global_control> limit;
-  if (a.threads > 0) limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(a.threads));
+  // Ranks share the cores: one thread each unless --threads says otherwise.
+  const int wanted = a.threads > 0 ? a.threads : launch.size > 1 ? 1 : 0;
+  if (wanted > 0) limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, std::size_t(wanted));
   const int threads = int(oneapi::tbb::global_control::active_value(oneapi::tbb::global_control::max_allowed_parallelism));
 
   const loom::SceneSpec scene = loom::load_scene(a.scene, a.sets);
-  print_warnings(scene);
+  loom::join_ranks(launch, scene);
+  const bool lead = launch.lead();
+  if (lead) print_warnings(scene);
   loom::RunOptions options;
   resolve_output(a, scene, options);
   options.threads = threads;
-  options.progress = !a.quiet;
-  options.quiet = a.quiet;
-  options.log = &std::cerr;
-  options.verbose = a.verbose;
+  options.write_files = lead;
+  options.progress = !a.quiet && lead;
+  options.quiet = a.quiet || !lead;
+  options.log = lead ? &std::cerr : nullptr;
+  options.verbose = a.verbose && lead;
   options.profile = a.profile;
   options.stop_after = a.stop_after;
   loom::install_interrupt_handlers();
   auto method = loom::make_method_run(scene, options);
   loom::RunSummary summary = method->run();
   summary.threads = threads;
+  summary.ranks = launch.size;
+  if (!lead) return !summary.converged ? 1 : summary.interrupted_by && !summary.stopped ? 128 + summary.interrupted_by : 0;
 
   const loom::RunIdentity id{LOOM_VERSION, a.scene, scene.scene.name, scene.text_hash, loom::method_name(scene.scene.method)};
   loom::write_file_atomic(options.output_directory + "/run.json", loom::run_json(id, summary));
@@ -218,6 +227,9 @@ void pin_solver_threads(char** argv) {
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "run") pin_solver_threads(argv);
+  const loom::MpiLaunch launch = loom::mpi_launch();
+  // Ranks other than 0 say nothing: every rank meets the same errors, and rank 0 reports them.
+  if (!launch.lead()) std::cout.setstate(std::ios::failbit), std::cerr.setstate(std::ios::failbit);
   try {
     const Args a = parse(argc, argv);
     if (a.command == "--version" || a.command == "version") {
@@ -235,7 +247,7 @@ int main(int argc, char** argv) {
     LOOM_CHECK(a.command == "run" || a.command == "check" || a.command == "info", loom::InputError,
                "unknown command '" << a.command << "'\n" << kUsage);
     LOOM_CHECK(!a.scene.empty(), loom::InputError, "missing SCENE\n" << kUsage);
-    if (a.command == "run") return run(a);
+    if (a.command == "run") return run(a, launch);
     LOOM_CHECK(a.restart.empty() && a.stop_after == 0, loom::InputError, "--restart and --stop-after are options of loom run\n" << kUsage);
     const loom::SceneSpec scene = loom::load_scene(a.scene, a.sets);
     print_warnings(scene);

@@ -9,6 +9,7 @@ namespace loom {
 namespace {
 
 std::atomic<int> g_signal{0};  // lock-free: read and written from the handler
+int (*g_agree)(int) = nullptr;
 
 extern "C" void on_signal(int sig) {
   if (g_signal.exchange(sig) != 0) {  // the second signal: stop now
@@ -38,6 +39,8 @@ bool interrupt_requested() { return g_signal.load(std::memory_order_relaxed) != 
 int interrupt_signal() { return g_signal.load(std::memory_order_relaxed); }
 void request_interrupt(int signal) { g_signal.store(signal); }
 void clear_interrupt() { g_signal.store(0); }
+void set_interrupt_agreement(int (*agree)(int)) { g_agree = agree; }
+int agreed_interrupt_signal() { return g_agree ? g_agree(interrupt_signal()) : interrupt_signal(); }
 
 const char* signal_name(int signal) {
   switch (signal) {

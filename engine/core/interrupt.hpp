@@ -14,6 +14,12 @@ bool interrupt_requested();
 int interrupt_signal();
 // As if `signal` had arrived (tests); clear_interrupt() forgets it.
 void request_interrupt(int signal);
+// Across the ranks of `mpirun -n N loom run` a signal reaches each rank at its own moment, and the ranks must stop
+// after the same step (every step's solve is collective): with an agreement set (a collective maximum over the
+// ranks), the time loop stops when any rank was signalled. Null: this process decides alone.
+void set_interrupt_agreement(int (*agree)(int local_signal));
+// The signal that ends the run before the next step (0: none): this process's, or the ranks' agreed one.
+int agreed_interrupt_signal();
 void clear_interrupt();
 const char* signal_name(int signal);
 

@@ -30,6 +30,7 @@ struct RunSummary {
   long long linear_iterations = 0, preconditioner_set_ups = 0;
   long long dofs = 0, cells = 0;
   int threads = 0;
+  int ranks = 1;  // MPI ranks of the run (mpirun -n N)
 };
 
 }  // namespace loom

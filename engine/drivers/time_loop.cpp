@@ -32,8 +32,8 @@ TimeLoopResult run_time_loop(double dt, int steps, int max_cutbacks, StepContext
   const int step0 = on_grid ? 0 : range.first_step - 1;
   const double t0 = on_grid ? 0.0 : t;
   for (int step = range.first_step; step <= steps; ++step) {
-    if (interrupt_requested()) {
-      result.interrupted_by = interrupt_signal();
+    if (const int signal = agreed_interrupt_signal(); signal != 0) {
+      result.interrupted_by = signal;
       return result;
     }
     ctx.t = t;

@@ -38,6 +38,7 @@ std::string run_json(const RunIdentity& id, const RunSummary& s) {
      << "  \"scene_hash\": \"" << json_escape(id.scene_hash) << "\",\n"
      << "  \"method\": \"" << json_escape(id.method) << "\",\n"
      << "  \"threads\": " << s.threads << ",\n"
+     << "  \"ranks\": " << s.ranks << ",\n"
      << "  \"dofs\": " << s.dofs << ",\n"
      << "  \"cells\": " << s.cells << ",\n"
      << "  \"steps_requested\": " << s.steps_requested << ",\n"

@@ -225,10 +225,11 @@ namespace {
 
 using PetscFactory = LinearSolver* (*)(double, const char*, int);
 
-// Opens the plugin once (RTLD_GLOBAL: Open MPI opens components of its own that need its symbols).
-PetscFactory petsc_factory(std::string* problem) {
+// Opens the plugin once (RTLD_GLOBAL: Open MPI opens components of its own that need its symbols): its handle, or null
+// with why not in `problem`.
+void* petsc_plugin(std::string* problem) {
   static std::string why;
-  static PetscFactory factory = [] () -> PetscFactory {
+  static void* handle = [] () -> void* {
     const char* moved = std::getenv("LOOM_PETSC_PLUGIN");  // where the plugin is, if not where it was built
     const std::string path = moved ? moved : LOOM_PETSC_PLUGIN;
     if (path.empty()) {
@@ -240,14 +241,23 @@ PetscFactory petsc_factory(std::string* problem) {
       why = std::string("the PETSc plugin does not load: ") + dlerror();
       return nullptr;
     }
-    auto f = reinterpret_cast<PetscFactory>(dlsym(lib, "loom_make_petsc_solver"));
     auto interface = reinterpret_cast<int (*)()>(dlsym(lib, "loom_petsc_interface"));
-    if (!f || !interface) why = path + " is not loom's PETSc plugin";
+    if (!dlsym(lib, "loom_make_petsc_solver") || !interface) why = path + " is not loom's PETSc plugin";
     else if (interface() != kLinearSolverInterface) why = path + " was built from another version of loom: build it again";
-    return why.empty() ? f : nullptr;
+    return why.empty() ? lib : nullptr;
   }();
   if (problem) *problem = why;
-  return factory;
+  return handle;
+}
+
+PetscFactory petsc_factory(std::string* problem) {
+  void* lib = petsc_plugin(problem);
+  return lib ? reinterpret_cast<PetscFactory>(dlsym(lib, "loom_make_petsc_solver")) : nullptr;
+}
+
+int max_over_ranks(int value) {
+  static auto reduce = reinterpret_cast<int (*)(int)>(dlsym(petsc_plugin(nullptr), "loom_petsc_max_over_ranks"));
+  return reduce(value);
 }
 
 }  // namespace
@@ -257,6 +267,14 @@ std::string petsc_solver_problem() {
   petsc_factory(&problem);
   return problem;
 }
+
+int petsc_ranks() {
+  void* lib = petsc_plugin(nullptr);
+  auto ranks = lib ? reinterpret_cast<int (*)()>(dlsym(lib, "loom_petsc_ranks")) : nullptr;
+  return ranks ? ranks() : 0;
+}
+
+MaxOverRanks petsc_max_over_ranks() { return petsc_ranks() > 0 ? &max_over_ranks : nullptr; }
 
 std::unique_ptr<LinearSolver> make_petsc_solver(double tolerance, const std::string& options, bool reuse) {
   std::string problem;

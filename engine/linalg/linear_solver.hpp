@@ -95,6 +95,12 @@ std::string petsc_solver_problem();
 // options: solver.petsc_options; tolerance: solver.linear_tolerance; reuse: solver.reuse_factor (keep the preconditioner
 // while it serves: rebuilt when a solve needs more than twice the iterations of the first one after its set-up).
 std::unique_ptr<LinearSolver> make_petsc_solver(double tolerance, const std::string& options, bool reuse = false);
+// The ranks of MPI_COMM_WORLD as the plugin's MPI sees them (starting MPI and PETSc if need be), 0 if there is no
+// plugin or it does not start: under `mpirun -n N` it must be N, else loom and mpirun are of different MPIs.
+int petsc_ranks();
+// The plugin's collective maximum over the ranks (for set_interrupt_agreement), null without a plugin that starts.
+using MaxOverRanks = int (*)(int);
+MaxOverRanks petsc_max_over_ranks();
 
 std::unique_ptr<LinearSolver> make_cholmod_solver();  // supernodal LL^T, SPD only
 // General sparse LU. Above `wide_above` Units (8 bytes) of estimated workspace it factorises with 64-bit indices

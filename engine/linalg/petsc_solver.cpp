@@ -1,4 +1,5 @@
-// solver.linear = "petsc": Krylov solvers with algebraic multigrid from PETSc, one process.
+// solver.linear = "petsc": Krylov solvers with algebraic multigrid from PETSc, on one process or on the ranks of
+// `mpirun -n N loom run` (petsc_system.hpp: each rank gives PETSc its own rows of the replicated system).
 //
 // Built as a plugin (libloom_petsc.so) that linear_solver.cpp opens the first time a scene asks for it, so that a loom
 // process that does not use PETSc neither loads its ~100 shared libraries nor starts MPI. The plugin is self-contained:
@@ -23,7 +24,7 @@
 #include <vector>
 
 #include "engine/linalg/linear_solver.hpp"
-#include "engine/linalg/whole_node_layout.hpp"
+#include "engine/linalg/petsc_system.hpp"
 
 namespace loom {
 namespace {
@@ -66,21 +67,6 @@ bool start_petsc() {
   return started;
 }
 
-// PETSc's words for an error code (the return error handler keeps no message of its own).
-std::string petsc_error_text(PetscErrorCode code) {
-  const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  return (text ? std::string(text) : std::string("PETSc error")) + " (" + std::to_string(int(code)) + ")";
-}
-
-struct PetscFailure {
-  std::string what;
-};
-#define LOOM_PETSC_CALL(call)                                     \
-  do {                                                            \
-    if (PetscErrorCode code_ = (call); code_ != 0) throw PetscFailure{std::string(#call) + ": " + petsc_error_text(code_)}; \
-  } while (0)
-
 // The option names a user wrote ("-ksp_type cg -pc_type gamg" -> -ksp_type, -pc_type).
 std::vector<std::string> option_names(const std::string& options) {
   std::vector<std::string> names;
@@ -116,9 +102,9 @@ class PetscSolver final : public LinearSolver {
     failure_.clear();
     try {
       destroy();
-      build_matrix(A);
+      system_.build(A, structure_);
       build_near_null_space();
-      LOOM_PETSC_CALL(KSPCreate(PETSC_COMM_SELF, &ksp_));
+      LOOM_PETSC_CALL(KSPCreate(PetscSystem::communicator(), &ksp_));
       configured_ = set_up_ = rebuild_next_ = false;
     } catch (const PetscFailure& f) {
       failure_ = "PETSc could not set up the linear solver: " + f.what;
@@ -131,7 +117,7 @@ class PetscSolver final : public LinearSolver {
       return false;
     }
     failure_.clear();
-    const bool symmetric = is_symmetric(A, layout_.transpose, 1e-12);
+    const bool symmetric = is_symmetric(A, system_.layout().transpose, 1e-12);
     // A mixed system's options do not depend on symmetry, and its fieldsplit must be given its index sets once: a
     // finite-strain u-p tangent is symmetric at the undeformed start and not after it (configuring twice crashed PETSc).
     if (!configured_ || (symmetric != symmetric_ && !mixed())) {
@@ -148,7 +134,7 @@ class PetscSolver final : public LinearSolver {
       kept_now_ = reuse_ && set_up_ && !rebuild_next_;
       if (kept_now_) {  // the new matrix is the operator; the preconditioner stays
         LOOM_PETSC_CALL(KSPSetReusePreconditioner(ksp_, PETSC_TRUE));
-        LOOM_PETSC_CALL(KSPSetOperators(ksp_, matrix_, matrix_));
+        LOOM_PETSC_CALL(KSPSetOperators(ksp_, system_.matrix(), system_.matrix()));
       } else if (reuse_ && rebuild_next_) {
         rebuild();  // the kept one served badly: a new hierarchy, aggregates and all
       } else {
@@ -176,11 +162,7 @@ class PetscSolver final : public LinearSolver {
     }
     failure_.clear();
     try {
-      PetscScalar* values = nullptr;
-      LOOM_PETSC_CALL(VecSet(rhs_, 0.0));
-      LOOM_PETSC_CALL(VecGetArray(rhs_, &values));
-      for (Index e = 0; e < b.size(); ++e) values[layout_.row_of_equation[std::size_t(e)]] = b[e];
-      LOOM_PETSC_CALL(VecRestoreArray(rhs_, &values));
+      system_.set_rhs(b);
       KSPConvergedReason reason = krylov_solve(kept_now_ ? std::max(kKeptIterationFloor, kKeptIterationCap * iterations_after_set_up_) : 0);
       if (reason < 0 && kept_now_) {
         kept_now_ = false;
@@ -207,11 +189,7 @@ class PetscSolver final : public LinearSolver {
         failure_ = describe_failure(b.norm());
         return false;
       }
-      const PetscScalar* out = nullptr;
-      LOOM_PETSC_CALL(VecGetArrayRead(solution_, &out));
-      x.resize(b.size());
-      for (Index e = 0; e < b.size(); ++e) x[e] = out[layout_.row_of_equation[std::size_t(e)]];
-      LOOM_PETSC_CALL(VecRestoreArrayRead(solution_, &out));
+      system_.get_solution(x, b.size());
       return true;
     } catch (const PetscFailure& f) {
       failure_ = "PETSc's Krylov solve failed: " + f.what;
@@ -228,8 +206,8 @@ class PetscSolver final : public LinearSolver {
   // remembers the first solve's count.
   KSPConvergedReason krylov_solve(PetscInt cap) {
     LOOM_PETSC_CALL(KSPSetTolerances(ksp_, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, cap > 0 ? std::min(cap, max_iterations_) : max_iterations_));
-    LOOM_PETSC_CALL(VecSet(solution_, 0.0));
-    LOOM_PETSC_CALL(KSPSolve(ksp_, rhs_, solution_));
+    LOOM_PETSC_CALL(VecSet(system_.solution(), 0.0));
+    LOOM_PETSC_CALL(KSPSolve(ksp_, system_.rhs(), system_.solution()));
     KSPConvergedReason reason;
     PetscInt its = 0;
     LOOM_PETSC_CALL(KSPGetConvergedReason(ksp_, &reason));
@@ -240,14 +218,11 @@ class PetscSolver final : public LinearSolver {
     return reason;
   }
 
-  // (Getting and restoring the values raises the matrix's state, so that PCSetUp cannot take an unchanged matrix for a
-  // set-up already done.)
+  // (The matrix is touched so that PCSetUp cannot take an unchanged matrix for a set-up already done.)
   PetscErrorCode set_up_afresh() {
-    PetscScalar* values = nullptr;
-    PetscCall(MatSeqAIJGetArray(matrix_, &values));
-    PetscCall(MatSeqAIJRestoreArray(matrix_, &values));
+    system_.touch();
     PetscCall(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
-    PetscCall(KSPSetOperators(ksp_, matrix_, matrix_));
+    PetscCall(KSPSetOperators(ksp_, system_.matrix(), system_.matrix()));
     PetscCall(KSPSetUp(ksp_));
     set_ups_ += 1, iterations_after_set_up_ = -1;
     return 0;
@@ -257,7 +232,7 @@ class PetscSolver final : public LinearSolver {
   // KSP (-pc_gamg_reuse_interpolation), so a preconditioner that no longer serves is rebuilt from scratch.
   void rebuild() {
     LOOM_PETSC_CALL(KSPDestroy(&ksp_));
-    LOOM_PETSC_CALL(KSPCreate(PETSC_COMM_SELF, &ksp_));
+    LOOM_PETSC_CALL(KSPCreate(PetscSystem::communicator(), &ksp_));
     configure(symmetric_);
     LOOM_PETSC_CALL(set_up_afresh());
   }
@@ -276,53 +251,21 @@ class PetscSolver final : public LinearSolver {
     return os.str();
   }
 
-  // A SeqAIJ matrix preallocated with exactly the layout's pattern (whole_node_layout.hpp).
-  void build_matrix(const SparseMatrix& A) {
-    layout_ = whole_node_layout(A, structure_);
-    const PetscInt n_rows = layout_.rows;
-    LOOM_PETSC_CALL(MatCreate(PETSC_COMM_SELF, &matrix_));
-    LOOM_PETSC_CALL(MatSetSizes(matrix_, n_rows, n_rows, n_rows, n_rows));
-    LOOM_PETSC_CALL(MatSetType(matrix_, MATSEQAIJ));
-    LOOM_PETSC_CALL(MatSetBlockSize(matrix_, layout_.block_size));
-    LOOM_PETSC_CALL(MatSeqAIJSetPreallocationCSR(matrix_, layout_.offsets.data(), layout_.columns.data(), nullptr));
-    LOOM_PETSC_CALL(MatSetOption(matrix_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
-    LOOM_PETSC_CALL(MatCreateVecs(matrix_, &solution_, &rhs_));
-  }
-
-  // Coordinates of the row blocks' nodes (dim per node), as a PETSc vector with block size dim.
-  ::Vec node_coordinates() {
-    const int dim = structure_.dim;
-    ::Vec coords;
-    LOOM_PETSC_CALL(VecCreateSeq(PETSC_COMM_SELF, PetscInt(layout_.node_of_row_block.size()) * dim, &coords));
-    LOOM_PETSC_CALL(VecSetBlockSize(coords, dim));
-    PetscScalar* c = nullptr;
-    LOOM_PETSC_CALL(VecGetArray(coords, &c));
-    for (std::size_t b = 0; b < layout_.node_of_row_block.size(); ++b)
-      for (int d = 0; d < dim; ++d)
-        c[b * std::size_t(dim) + std::size_t(d)] = structure_.coordinates[std::size_t(layout_.node_of_row_block[b]) * std::size_t(dim) + std::size_t(d)];
-    LOOM_PETSC_CALL(VecRestoreArray(coords, &c));
-    return coords;
-  }
-
   // The rigid-body modes of the displacement dofs (GAMG's near-null space): on the matrix for a displacement system,
   // on the u field's index set for a mixed one (PCFIELDSPLIT hands it to the split's GAMG).
   void build_near_null_space() {
-    if (!layout_.whole_nodes) return;
+    if (!system_.layout().whole_nodes) return;
     const int dim = structure_.dim, per_node = structure_.dofs.per_node;
     if (structure_.coordinates.size() < std::size_t(structure_.dofs.n_nodes()) * std::size_t(dim)) return;
     if (per_node != dim && per_node != dim + 1) return;
-    ::Vec coords = node_coordinates();
+    ::Vec coords = system_.node_coordinates(structure_);
     MatNullSpace modes;
     LOOM_PETSC_CALL(MatNullSpaceCreateRigidBody(coords, &modes));
     LOOM_PETSC_CALL(VecDestroy(&coords));
     if (per_node == dim) {
-      LOOM_PETSC_CALL(MatSetNearNullSpace(matrix_, modes));
+      LOOM_PETSC_CALL(MatSetNearNullSpace(system_.matrix(), modes));
     } else {
-      std::vector<PetscInt> u_rows, p_rows;
-      for (PetscInt r = 0; r < layout_.rows; ++r) (r % per_node < dim ? u_rows : p_rows).push_back(r);
-      LOOM_PETSC_CALL(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(u_rows.size()), u_rows.data(), PETSC_COPY_VALUES, &u_field_));
-      LOOM_PETSC_CALL(ISSetBlockSize(u_field_, dim));
-      LOOM_PETSC_CALL(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(p_rows.size()), p_rows.data(), PETSC_COPY_VALUES, &p_field_));
+      system_.field_sets(dim, &u_field_, &p_field_);
       LOOM_PETSC_CALL(PetscObjectCompose(reinterpret_cast<PetscObject>(u_field_), "nearnullspace", reinterpret_cast<PetscObject>(modes)));
     }
     LOOM_PETSC_CALL(MatNullSpaceDestroy(&modes));
@@ -367,11 +310,8 @@ class PetscSolver final : public LinearSolver {
 
   // The decoupled rows' diagonal is the mean free diagonal, so that they do not spoil the scaling.
   void copy_values(const SparseMatrix& A) {
-    PetscScalar* values = nullptr;
-    LOOM_PETSC_CALL(MatSeqAIJGetArray(matrix_, &values));
     const double scale = A.rows() > 0 ? A.diagonal().cwiseAbs().mean() : 1.0;
-    loom::copy_values(A, layout_, scale > 0.0 ? scale : 1.0, values);
-    LOOM_PETSC_CALL(MatSeqAIJRestoreArray(matrix_, &values));
+    system_.set_values(A, scale > 0.0 ? scale : 1.0);
   }
 
   // Of the user's options, those the options database still holds unused (PetscOptionsLeftGet names them without the
@@ -409,9 +349,7 @@ class PetscSolver final : public LinearSolver {
 
   void destroy() {
     if (ksp_) KSPDestroy(&ksp_);
-    if (matrix_) MatDestroy(&matrix_);
-    if (rhs_) VecDestroy(&rhs_);
-    if (solution_) VecDestroy(&solution_);
+    system_.destroy();
     if (u_field_) ISDestroy(&u_field_);
     if (p_field_) ISDestroy(&p_field_);
   }
@@ -420,7 +358,7 @@ class PetscSolver final : public LinearSolver {
   std::string user_options_;
   SolveStructure structure_;
   bool reuse_;
-  WholeNodeLayout layout_;
+  PetscSystem system_;
   bool configured_ = false, symmetric_ = false;
   bool set_up_ = false, rebuild_next_ = false;  // reuse: a preconditioner exists; rebuild it at the next factorize
   bool kept_now_ = false;                       // the next solve runs on a kept preconditioner
@@ -428,8 +366,6 @@ class PetscSolver final : public LinearSolver {
   PetscInt max_iterations_ = 2000;              // the configured -ksp_max_it
   PetscInt iterations_after_set_up_ = -1;
   long long set_ups_ = 0;
-  Mat matrix_ = nullptr;
-  ::Vec rhs_ = nullptr, solution_ = nullptr;
   KSP ksp_ = nullptr;
   IS u_field_ = nullptr, p_field_ = nullptr;
   long long iterations_ = 0;
@@ -441,6 +377,16 @@ class PetscSolver final : public LinearSolver {
 }  // namespace loom
 
 extern "C" __attribute__((visibility("default"))) int loom_petsc_interface() { return loom::kLinearSolverInterface; }
+
+// The ranks PETSc runs on (MPI_COMM_WORLD), starting it if need be; 0 if MPI or PETSc does not start.
+extern "C" __attribute__((visibility("default"))) int loom_petsc_ranks() { return loom::start_petsc() ? loom::PetscSystem::ranks() : 0; }
+
+// The largest of every rank's value (collective: every rank calls it at the same point of the run).
+extern "C" __attribute__((visibility("default"))) int loom_petsc_max_over_ranks(int value) {
+  int largest = value;
+  MPI_Allreduce(&value, &largest, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return largest;
+}
 
 // Null if MPI or PETSc does not start.
 extern "C" __attribute__((visibility("default"))) loom::LinearSolver* loom_make_petsc_solver(double tolerance, const char* options, int reuse) {

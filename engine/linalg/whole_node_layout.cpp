@@ -84,6 +84,18 @@ WholeNodeLayout whole_node_layout(const SparseMatrix& A, const SolveStructure& s
   return l;
 }
 
+std::vector<int> rows_of_ranks(const WholeNodeLayout& layout, int ranks) {
+  const int bs = std::max(layout.block_size, 1), blocks = layout.rows / bs;
+  const double entries = double(layout.offsets.empty() ? 0 : layout.offsets.back());
+  std::vector<int> first_row(std::size_t(ranks) + 1, layout.rows);
+  first_row[0] = 0;
+  // Rank r starts at the first block boundary whose entries before it reach r / ranks of all of them.
+  int r = 1;
+  for (int b = 0; b < blocks && r < ranks; ++b)
+    while (r < ranks && double(layout.offsets[std::size_t(b * bs)]) >= entries * double(r) / double(ranks)) first_row[std::size_t(r++)] = b * bs;
+  return first_row;
+}
+
 bool is_symmetric(const SparseMatrix& A, const std::vector<Index>& transpose, double tolerance) {
   const double* v = A.valuePtr();
   double largest = 0.0, asymmetry = 0.0;

@@ -30,6 +30,11 @@ WholeNodeLayout whole_node_layout(const SparseMatrix& A, const SolveStructure& s
 // Whether A equals its transpose to `tolerance` times its largest entry.
 bool is_symmetric(const SparseMatrix& A, const std::vector<Index>& transpose, double tolerance);
 
+// The rows each of `ranks` processes owns in a distributed solve: first_row[r] .. first_row[r + 1], whole row blocks
+// (a node's dofs stay on one rank, as the block size and the near-null space need), contiguous, and balanced by
+// entries (the work of a matrix-vector product), not by rows. A pure function of the layout: every rank computes it.
+std::vector<int> rows_of_ranks(const WholeNodeLayout& layout, int ranks);
+
 // Writes A's values into the CSR value array of the layout, and `decoupled` on the decoupled rows' diagonals.
 void copy_values(const SparseMatrix& A, const WholeNodeLayout& layout, double decoupled, double* values);
 

@@ -161,7 +161,7 @@ TEST(OutputReadBack, CooksMembraneLinearFilesAreCompleteAndConsistent) {
   const Json run = parse_json(read_text(out.file("run.json")));
   for (const char* key : {"loom_version", "scene_file", "scene_name", "scene_hash", "method", "linear_solver", "failure"})
     EXPECT_EQ(run.at(key).kind, Json::Kind::string) << key;
-  for (const char* key : {"threads", "dofs", "cells", "steps_requested", "steps_done", "last_converged_step",
+  for (const char* key : {"threads", "ranks", "dofs", "cells", "steps_requested", "steps_done", "last_converged_step",
                           "last_converged_time", "newton_iterations", "cutbacks", "wall_seconds"})
     EXPECT_EQ(run.at(key).kind, Json::Kind::number) << key;
   EXPECT_EQ(run.at("converged").kind, Json::Kind::boolean);

@@ -1,8 +1,12 @@
 #include "tests/support/test_support.hpp"
+#include "tests/support/run_comparison.hpp"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -39,21 +43,22 @@ std::unique_ptr<MpmRunT<D>> make_mpm_run(const SceneSpec& scene, const std::stri
 template std::unique_ptr<MpmRunT<2>> make_mpm_run<2>(const SceneSpec&, const std::string&);
 template std::unique_ptr<MpmRunT<3>> make_mpm_run<3>(const SceneSpec&, const std::string&);
 
-namespace {
-std::string quote(const std::string& s) {
+std::string shell_quote(const std::string& s) {
   std::string r = "'";
-  for (char c : s) r += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  for (char c : s) {
+    if (c == '\'') r += "'\\''";
+    else r += c;
+  }
   return r + "'";
 }
-}  // namespace
 
 Command run_loom(const std::vector<std::string>& args) {
   static int counter = 0;
   const std::string base = std::filesystem::temp_directory_path().string() + "/loom_cmd_" + std::to_string(getpid()) + "_" +
                            std::to_string(counter++);
-  std::string cmd = quote(LOOM_BINARY);
-  for (const auto& a : args) cmd += " " + quote(a);
-  cmd += " >" + quote(base + ".out") + " 2>" + quote(base + ".err");
+  std::string cmd = shell_quote(LOOM_BINARY);
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  cmd += " >" + shell_quote(base + ".out") + " 2>" + shell_quote(base + ".err");
   const int status = std::system(cmd.c_str());
   Command c;
   c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -111,6 +116,24 @@ ProbeTable read_probes(const std::string& path) {
     t.rows.push_back(values);
   }
   return t;
+}
+
+double probe_difference(const ProbeTable& a, const ProbeTable& b) {
+  EXPECT_EQ(a.names, b.names);
+  EXPECT_EQ(a.rows.size(), b.rows.size());
+  double worst = 0.0;
+  for (const std::string& name : a.names) {
+    if (name == "step" || name == "time") continue;
+    const std::vector<double> x = a.column(name), y = b.column(name);
+    double scale = 0.0, difference = 0.0;
+    for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
+      scale = std::max(scale, std::abs(x[i]));
+      difference = std::max(difference, std::abs(x[i] - y[i]));
+    }
+    if (scale > 1e-12) worst = std::max(worst, difference / scale);
+    else if (difference > 1e-12) worst = INFINITY;
+  }
+  return worst;
 }
 
 ProbeTable run_for_probes(const SceneSpec& scene, const std::string& name, RunSummary* summary) {

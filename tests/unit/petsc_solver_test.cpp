@@ -6,14 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <vector>
 
 #include "engine/core/errors.hpp"
 #include "engine/linalg/linear_solver.hpp"
 #include "engine/scene/scene_loader.hpp"
-#include "tests/support/test_support.hpp"
+#include "tests/support/run_comparison.hpp"
 
 namespace loom {
 namespace {
@@ -53,6 +55,43 @@ TEST(PetscSolve, LuEqualsUmfpackToRoundOff) {
   }
 }
 
+// PETSc's parallel direct solver (MUMPS), on one process or across the ranks of mpirun (petsc_solver_mpi_test).
+TEST(PetscSolve, MumpsLuEqualsUmfpackToRoundOff) {
+  for (double convection : {0.0, 0.4}) {
+    const SparsePattern p = banded(200, 0.01, convection);
+    LinearSolve petsc(LinearSolverKind::petsc, 1e-10, false, "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps");
+    EXPECT_LE(relative_error(petsc, p), 1e-12);
+  }
+}
+
+// The ranks the program was launched on: mpirun -n N (Open MPI says so in the environment), else one.
+int launched_ranks() {
+  const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+  return size ? std::atoi(size) : 1;
+}
+
+// Under `mpirun -n 2` (the ctest petsc_solver_mpi_test runs this program so) PETSc works across the launcher's ranks,
+// each giving it its rows, and every rank gets the same solution back, bit for bit (the replicated stores go on from it).
+TEST(PetscSolve, SolvesAcrossTheLaunchedRanksAndEveryRankGetsTheSameSolution) {
+  EXPECT_EQ(petsc_ranks(), launched_ranks());
+  const SparsePattern p = banded(301, 0.01, 0.4);
+  LinearSolve s(LinearSolverKind::petsc, 1e-12);
+  ASSERT_TRUE(s.factorize(p));
+  Eigen::VectorXd x;
+  ASSERT_TRUE(s.solve(Eigen::VectorXd::LinSpaced(301, 1.0, 2.0), x));
+  std::uint64_t bits = 1469598103934665603ull;  // FNV-1a of the solution's bytes, folded to 31 bits
+  for (Index i = 0; i < x.size(); ++i) {
+    std::uint64_t word;
+    std::memcpy(&word, &x[i], sizeof word);
+    bits = (bits ^ word) * 1099511628211ull;
+  }
+  const int mine = int(bits & 0x7fffffff);
+  const MaxOverRanks largest = petsc_max_over_ranks();
+  ASSERT_NE(largest, nullptr);
+  EXPECT_EQ(largest(mine), mine);    // no rank's is larger
+  EXPECT_EQ(-largest(-mine), mine);  // nor smaller
+}
+
 TEST(PetscSolve, DefaultsReachTheLinearToleranceOnSymmetricAndUnsymmetricMatrices) {
   for (double convection : {0.0, 0.4}) {
     LinearSolve s(LinearSolverKind::petsc, 1e-12);
@@ -73,26 +112,6 @@ testing::ProbeTable probes_of(const std::string& scene_file, std::vector<std::st
   return testing::run_for_probes(scene, "petsc_" + linear, summary);
 }
 
-// The largest difference between two runs' probes, relative to the largest magnitude of each column; a column that is
-// zero up to round-off in both (an area change of 1e-15) is compared absolutely, to 1e-12.
-double probe_difference(const testing::ProbeTable& a, const testing::ProbeTable& b) {
-  EXPECT_EQ(a.names, b.names);
-  EXPECT_EQ(a.rows.size(), b.rows.size());
-  double worst = 0.0;
-  for (const std::string& name : a.names) {
-    if (name == "step" || name == "time") continue;
-    const std::vector<double> x = a.column(name), y = b.column(name);
-    double scale = 0.0, difference = 0.0;
-    for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
-      scale = std::max(scale, std::abs(x[i]));
-      difference = std::max(difference, std::abs(x[i] - y[i]));
-    }
-    if (scale > 1e-12) worst = std::max(worst, difference / scale);
-    else if (difference > 1e-12) worst = INFINITY;
-  }
-  return worst;
-}
-
 // 3D displacement elements (tet10 Cook's membrane at nu = 0.3): CG + GAMG with the rigid-body modes against CHOLMOD.
 // (At the scene's nu = 0.4999 GAMG on the displacement-only tangent diverges: near incompressibility wants the mixed
 // elements and their fieldsplit, below.)
@@ -101,7 +120,7 @@ TEST(PetscSolve, Fem3dCookMembraneAsCholmodToTheLinearTolerance) {
   const std::vector<std::string> sets = {"body[0].mesh.divisions=[8,8,1]", "material[0].nu=0.3"};
   const testing::ProbeTable petsc = probes_of("scenes/cooks_membrane_3d.toml", sets, "petsc", &summary);
   const testing::ProbeTable direct = probes_of("scenes/cooks_membrane_3d.toml", sets, "cholmod");
-  EXPECT_LE(probe_difference(petsc, direct), 1e-7);
+  EXPECT_LE(testing::probe_difference(petsc, direct), 1e-7);
   EXPECT_EQ(summary.linear_solver, "petsc");
   EXPECT_GT(summary.linear_iterations, 0);
 }
@@ -109,7 +128,7 @@ TEST(PetscSolve, Fem3dCookMembraneAsCholmodToTheLinearTolerance) {
 // Mixed u-phi tetrahedra near incompressibility (the step-44 block, nu = 0.4999): the Schur-complement fieldsplit.
 TEST(PetscSolve, MixedBlock3dAsUmfpackToTheLinearTolerance) {
   const std::vector<std::string> sets = {"body[0].mesh.divisions=[4,4,4]", "time.steps=3"};
-  EXPECT_LE(probe_difference(probes_of("scenes/block_3d.toml", sets, "petsc"), probes_of("scenes/block_3d.toml", sets, "umfpack")), 1e-7);
+  EXPECT_LE(testing::probe_difference(probes_of("scenes/block_3d.toml", sets, "petsc"), probes_of("scenes/block_3d.toml", sets, "umfpack")), 1e-7);
 }
 
 // The smoothed mixed elements at finite strain (es_up with Hencky on the homogeneous compression, 2D and 3D): their
@@ -122,7 +141,7 @@ TEST(PetscSolve, SmoothedMixedElementsAtFiniteStrainAsUmfpack) {
     RunSummary summary;
     const testing::ProbeTable petsc = probes_of(scene, sets, "petsc", &summary);
     EXPECT_TRUE(summary.completed) << scene << ": " << summary.failure;
-    EXPECT_LE(probe_difference(petsc, probes_of(scene, sets, "umfpack")), 1e-7) << scene;
+    EXPECT_LE(testing::probe_difference(petsc, probes_of(scene, sets, "umfpack")), 1e-7) << scene;
   }
 }
 
@@ -132,7 +151,7 @@ TEST(PetscSolve, SmoothedMixedElementsAtFiniteStrainAsUmfpack) {
 TEST(PetscSolve, PfemConstrainedBlockAsUmfpack) {
   for (const char* element : {"body[0].element=\"p1p1_uphi\"", "body[0].element=\"tri6\""}) {
     const std::vector<std::string> sets = {"time.steps=20", element};
-    EXPECT_LE(probe_difference(probes_of("scenes/constrained_block_pfem.toml", sets, "petsc"),
+    EXPECT_LE(testing::probe_difference(probes_of("scenes/constrained_block_pfem.toml", sets, "petsc"),
                                probes_of("scenes/constrained_block_pfem.toml", sets, "umfpack")),
               1e-7)
         << element;
@@ -165,11 +184,11 @@ testing::ProbeTable mpm_probes_of(const std::string& scene_file, std::vector<std
 
 TEST(PetscSolve, MpmCantileverAndMixedColumnAsTheDirectSolvers) {
   const std::vector<std::string> cantilever = {"time.steps=100"};
-  EXPECT_LE(probe_difference(mpm_probes_of("scenes/cantilever_mpm_grid_newmark.toml", cantilever, "petsc"),
+  EXPECT_LE(testing::probe_difference(mpm_probes_of("scenes/cantilever_mpm_grid_newmark.toml", cantilever, "petsc"),
                              mpm_probes_of("scenes/cantilever_mpm_grid_newmark.toml", cantilever, "cholmod")),
             1e-7);
   const std::vector<std::string> column = {"time.steps=4"};
-  EXPECT_LE(probe_difference(mpm_probes_of("scenes/column_twisting_mpm.toml", column, "petsc"),
+  EXPECT_LE(testing::probe_difference(mpm_probes_of("scenes/column_twisting_mpm.toml", column, "petsc"),
                              mpm_probes_of("scenes/column_twisting_mpm.toml", column, "umfpack")),
             1e-7);
 }
@@ -202,7 +221,7 @@ TEST(PetscSolve, ReuseKeepsThePreconditionerAndTheAnswer) {
   RunSummary fresh, kept;
   const testing::ProbeTable a = probes_of("scenes/block_3d.toml", sets, "petsc", &fresh);
   const testing::ProbeTable b = probes_of("scenes/block_3d.toml", reusing, "petsc", &kept);
-  EXPECT_LE(probe_difference(a, b), 1e-7);
+  EXPECT_LE(testing::probe_difference(a, b), 1e-7);
   EXPECT_EQ(fresh.preconditioner_set_ups, fresh.factorizations);
   EXPECT_LT(kept.preconditioner_set_ups, kept.factorizations / 2);
 }
@@ -269,7 +288,7 @@ TEST(PetscSolve, ARestartedRunEndsWhereTheUninterruptedOneDoes) {
   ASSERT_EQ(with({"run", scene, "--out", whole.path()}).exit_code, 0);
   const testing::ProbeTable a = testing::read_probes(stopped.file("probes.csv")), b = testing::read_probes(whole.file("probes.csv"));
   ASSERT_EQ(a.rows.size(), 5u);
-  EXPECT_LE(probe_difference(a, b), 1e-8);
+  EXPECT_LE(testing::probe_difference(a, b), 1e-8);
 }
 
 // A plugin that does not load (moved, or a missing library) refuses the scene with exit 2, naming the key.

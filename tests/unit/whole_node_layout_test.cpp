@@ -4,6 +4,7 @@
 // exactly (an unsymmetric one too), and the transpose map tells a symmetric matrix from an unsymmetric one.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "engine/linalg/whole_node_layout.hpp"
@@ -79,6 +80,40 @@ TEST(WholeNodeLayout, WithoutAFittingStructureTheRowsAreTheEquations) {
   EXPECT_EQ(l.rows, 7);
   EXPECT_TRUE(l.decoupled_slots.empty());
   EXPECT_EQ(l.columns.size(), 49u);
+}
+
+// Every rank count splits the rows into contiguous ranges of whole blocks that cover them once, each holding at most
+// its share of the entries plus one block's.
+void expect_balanced_split(const WholeNodeLayout& l, int ranks) {
+  const std::vector<int> first = rows_of_ranks(l, ranks);
+  ASSERT_EQ(first.size(), std::size_t(ranks) + 1);
+  EXPECT_EQ(first.front(), 0);
+  EXPECT_EQ(first.back(), l.rows);
+  int widest_block = 0;
+  for (int b = 0; b < l.rows; b += l.block_size)
+    widest_block = std::max(widest_block, l.offsets[std::size_t(b + l.block_size)] - l.offsets[std::size_t(b)]);
+  for (int r = 0; r < ranks; ++r) {
+    EXPECT_LE(first[std::size_t(r)], first[std::size_t(r) + 1]) << ranks;
+    EXPECT_EQ(first[std::size_t(r)] % l.block_size, 0) << ranks;
+    const double mine = l.offsets[std::size_t(first[std::size_t(r) + 1])] - l.offsets[std::size_t(first[std::size_t(r)])];
+    EXPECT_LE(mine, double(l.offsets.back()) / ranks + widest_block) << ranks << " ranks, rank " << r;
+  }
+}
+
+TEST(WholeNodeLayout, RanksOwnContiguousWholeBlocksBalancedByEntries) {
+  const WholeNodeLayout blocks = whole_node_layout(matrix(false), structure());
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < 101; ++i)  // a banded matrix whose rows hold 1 to 9 entries
+    for (int j = std::max(0, i - i % 5); j <= std::min(100, i + i % 5); ++j) t.emplace_back(i, j, 1.0);
+  SparseMatrix banded(101, 101);
+  banded.setFromTriplets(t.begin(), t.end());
+  banded.makeCompressed();
+  const WholeNodeLayout rows = whole_node_layout(banded, SolveStructure{});
+  for (int ranks = 1; ranks <= 8; ++ranks) {
+    expect_balanced_split(blocks, ranks);
+    expect_balanced_split(rows, ranks);
+  }
+  EXPECT_EQ(rows_of_ranks(rows, 1), (std::vector<int>{0, 101}));
 }
 
 }  // namespace
