@@ -87,7 +87,7 @@ TEST(MpiRun, MumpsAcrossTwoRanksIsUmfpackToRoundOff) {
 // the one-process run to the linear tolerance.
 TEST(MpiRun, TheMpmCantileverOnTwoRanksFollowsOneProcess) {
   TempDir one("mpi_mpm_one"), two("mpi_mpm_two");
-  const std::vector<std::string> args = {"--set", "time.steps=40", "--set", "solver.linear=\"petsc\""};
+  const std::vector<std::string> args = {"--set", "time.steps=20", "--set", "solver.linear=\"petsc\""};
   const testing::Command a = run(1, "cantilever_mpm_grid_newmark.toml", one.path() + "/out", args);
   const testing::Command b = run(2, "cantilever_mpm_grid_newmark.toml", two.path() + "/out", args);
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -115,7 +115,7 @@ TEST(MpiRun, AStoppedTwoRankRunContinuesOnTwoRanks) {
 TEST(MpiRun, SignalledRanksStopAfterTheSameStepAndContinueFromRankZerosCheckpoint) {
   TempDir dir("mpi_signal");
   const std::string out = dir.path() + "/out", code = dir.path() + "/code";
-  const std::vector<std::string> args = with(kBlock, {"--set", "time.steps=200", "--set", "time.dt=0.005"});
+  const std::vector<std::string> args = with(kBlock, {"--set", "time.steps=100", "--set", "time.dt=0.01"});
   std::string cmd = std::string(LOOM_MPIEXEC) + " -n 2 --oversubscribe " + testing::shell_quote(LOOM_BINARY) + " run " +
                     testing::shell_quote(std::string(LOOM_SOURCE_DIR) + "/scenes/block_3d.toml") + " --quiet --out " + testing::shell_quote(out);
   for (const auto& a : args) cmd.append(" ").append(testing::shell_quote(a));
@@ -134,14 +134,14 @@ TEST(MpiRun, SignalledRanksStopAfterTheSameStepAndContinueFromRankZerosCheckpoin
   ASSERT_EQ(report.at("status").string, "interrupted");
   EXPECT_EQ(report.at("interrupted_by").string, "SIGTERM");
   const int stopped = int(report.at("steps_done").number);
-  EXPECT_LT(stopped, 200);
+  EXPECT_LT(stopped, 100);
   char checkpoint[32];
   std::snprintf(checkpoint, sizeof checkpoint, "checkpoint_%06d.loom", stopped);
   EXPECT_TRUE(std::filesystem::exists(out + "/" + checkpoint)) << checkpoint;
   EXPECT_EQ(testing::read_probes(out + "/probes.csv").rows.size(), std::size_t(stopped) + 1);
   const testing::Command rest = run(2, "block_3d.toml", "", with(args, {"--restart", out}));
   ASSERT_EQ(rest.exit_code, 0) << rest.err;
-  EXPECT_EQ(testing::parse_json(testing::read_text(out + "/run.json")).at("steps_done").number, 200.0);
+  EXPECT_EQ(testing::parse_json(testing::read_text(out + "/run.json")).at("steps_done").number, 100.0);
 }
 
 TEST(MpiRun, ASceneThatDoesNotSolveWithPetscIsRefusedOnceNamingTheKey) {
