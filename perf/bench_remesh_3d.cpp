@@ -12,7 +12,8 @@
 //  - remesh_3d_at_rest/<n>: the same call on the unmoved lattice with R3.7 on: the check that keeps the mesh.
 //  - remesh_3d_step/<n>: a step of a flow: the previous mesh is the remesh of the moved points, which then move
 //    again by up to 0.02 of the spacing (the previous result's neighbours passed on, as pfem does); R3.7 on (it
-//    fails: some faces are no longer Delaunay) and a full remesh in which most cells are previous ones.
+//    fails: some faces are no longer Delaunay) and a full remesh in which most cells are previous ones;
+//    remesh_3d_step/<n>/1: the same with R3.8 on (remesh.repair): the failing faces flipped in place.
 // Usage (figures in perf/README.md; `taskset -c 0` in front for one thread):
 //   OPENBLAS_NUM_THREADS=1 build/perf/bench_remesh_3d --benchmark_repetitions=3 --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
@@ -113,10 +114,11 @@ void remesh_3d_at_rest(benchmark::State& state) {
   state.counters["kept"] = r.kept_previous ? 1.0 : 0.0;
 }
 
+// range(1): R3.8's local repair on (1) or off (0).
 void remesh_3d_step(benchmark::State& state) {
   const Lattice l = lattice(state.range(0));
   Remesh3dSettings settings;
-  settings.alpha = 1.3, settings.local = true;
+  settings.alpha = 1.3, settings.local = true, settings.repair = state.range(1) != 0;
   std::vector<double> h;
   average_neighbour_distance_3d(l.moved, l.mesh.tets, h);
   Remesh3dResult previous, r;
@@ -134,13 +136,15 @@ void remesh_3d_step(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * long(x.size()));
   state.counters["kept"] = r.kept_previous ? 1.0 : 0.0;
   state.counters["cells"] = double(r.tets.size() / 4);
+  state.counters["repaired"] = double(r.repaired);
+  state.counters["slivers"] = double(r.slivers);
 }
 
 BENCHMARK(delaunay_3d_parallel)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(delaunay_3d)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(remesh_3d)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(remesh_3d_at_rest)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
-BENCHMARK(remesh_3d_step)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(remesh_3d_step)->ArgsProduct({{10000, 100000, 1000000}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace loom

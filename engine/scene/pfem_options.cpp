@@ -42,6 +42,11 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
     if (s.walls[i].spacing > 0.0 && !(s.pfem.insert_above > 0.0))
       walls[i].error("spacing", "a spacing at the wall is made by particle insertion, which is off (set remesh.insert_above > 0)");
   s.pfem.keep_delaunay = remesh.boolean("keep_delaunay");
+  s.pfem.repair = remesh.boolean("repair");
+  // es_pfem shares the particles' mass out to the new tetrahedra (new_triangle_mass.hpp), exactly through a
+  // triangulation and its sliver flips; through the repair's flips it drifts (1.9e-6 of the mass in the slump's
+  // first half second, a printed layer's 1.3e-8): not offered until that transfer is exact there too.
+  if (es && s.pfem.repair) remesh.error("repair", "remesh.repair is for method pfem: es_pfem's mass transfer is not exact through its flips yet");
   s.pfem.flip_quality = remesh.real("flip_quality");
   s.pfem.max_new_material = remesh.real("max_new_material");
   if (s.scene.dimension == 3) {
@@ -62,7 +67,7 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
     // would tear every body apart.
     if (s.pfem.alpha < 1.0) remesh.error("alpha", "in 3D alpha must be >= 1: below, the alpha test tears a regular lattice's cells apart");
   } else {
-    for (const char* k : {"keep_delaunay", "flip_quality"})
+    for (const char* k : {"keep_delaunay", "repair", "flip_quality"})
       if (remesh.has(k)) remesh.error(k, std::string("remesh.") + k + " is used by the 3D remesh (scene.dimension = 3) only");
   }
   s.pfem.btm = map.string("scheme") == "btm";

@@ -41,7 +41,7 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   p.quantity = pick<RemeshQuantity>(quantity.empty() ? "area_change" : quantity, {{"area_change", RemeshQuantity::area_change},
                {"changed", RemeshQuantity::changed}, {"rejected", RemeshQuantity::rejected}, {"isolated", RemeshQuantity::isolated},
                {"merged", RemeshQuantity::merged}, {"crossings", RemeshQuantity::crossings}, {"inserted", RemeshQuantity::inserted},
-               {"removed", RemeshQuantity::removed}, {"flipped", RemeshQuantity::flipped}, {"slivers", RemeshQuantity::slivers},
+               {"removed", RemeshQuantity::removed}, {"flipped", RemeshQuantity::flipped}, {"slivers", RemeshQuantity::slivers}, {"repaired", RemeshQuantity::repaired},
                {"capped", RemeshQuantity::capped}});
   const std::string component = t.string("component");
   p.component = component == "y" ? 1 : component == "z" ? 2 : 0;

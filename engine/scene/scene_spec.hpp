@@ -39,7 +39,7 @@ enum class MeshGenerator { rectangle, cooks_membrane, file, box };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
                        angular_momentum, section };
 enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
-enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed, flipped, slivers, capped };
+enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed, flipped, slivers, capped, repaired };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
 struct ExpressionSpec {
@@ -297,9 +297,9 @@ struct PfemSpec {
   // Particle insertion and removal (factors of the body's spacing h0; 0: off), h0 (0: each body's initial mean
   // edge length).
   double insert_above = 0.0, remove_below = 0.0, spacing = 0.0;
-  // 3D (systems/remesh/remesh_3d.hpp): keep a mesh that is still Delaunay (R3.7); the quality 3 r_in / R below which
-  // cells are improved by flips (R3.4; 0: none).
-  bool keep_delaunay = true;
+  // 3D (systems/remesh/remesh_3d.hpp): keep a mesh that is still Delaunay (R3.7), or repair one that is nearly (R3.8);
+  // the quality 3 r_in / R below which cells are improved by flips (R3.4; 0: none).
+  bool keep_delaunay = true, repair = false;
   double flip_quality = 0.2;
   // es_pfem, dynamic: the mass that filled gaps (new material), as a fraction of the bodies' mass, above which a run fails.
   double max_new_material = 0.05;

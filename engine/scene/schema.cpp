@@ -374,9 +374,9 @@ std::vector<KeySpec> build_schema() {
                   "constrained: triangles added where two surfaces met), crossings (boundary edges left out of the constraints because "
                   "they crossed another), inserted and removed (particles added and taken away by remesh.insert_above, "
                   "remesh.remove_below and [[inlet]]s). 3D (cells are tetrahedra, areas volumes): flipped (flips that removed slivers), "
-                  "slivers (tetrahedra still below 0.1 in 3 r_in / R after them), capped (flat cells on the previous surface left out).")
+                  "slivers (tetrahedra still below 0.1 in 3 r_in / R after them), capped (flat cells on the previous surface left out), repaired (flips of remesh.repair).")
                   .one_of({"area_change", "changed", "rejected", "isolated", "merged", "crossings", "inserted", "removed", "flipped", "slivers",
-                           "capped"}));
+                           "capped", "repaired"}));
   s.push_back(key("probe[].energy", K::choice, "Which energy of an energy probe.").one_of({"kinetic", "elastic", "total", "potential", "mechanical"}).by_default("total"));
   // [output]
   s.push_back(key("output", K::table, "Where and how often results are written."));

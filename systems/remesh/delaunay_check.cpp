@@ -24,6 +24,8 @@ namespace {
 // 1e-3 across a cospherical cell -- is kept; a flow that strains further is remeshed as before.
 constexpr double kDelaunayMargin = 1e-3;
 
+}  // namespace
+
 bool strictly_inside_sphere(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e) {
   const Vec3 u = b - a, v = c - a, w = d - a;
   const double det = u.dot(v.cross(w));
@@ -33,6 +35,8 @@ bool strictly_inside_sphere(const Vec3& a, const Vec3& b, const Vec3& c, const V
   return (e - centre).squaredNorm() < r2 * (1.0 - kDelaunayMargin);
 }
 
+namespace {
+
 double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 u = b - a, v = c - a, w = d - a;
   const double det = u.dot(v.cross(w));
@@ -40,18 +44,13 @@ double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
   return ((u.squaredNorm() * v.cross(w) + v.squaredNorm() * w.cross(u) + w.squaredNorm() * u.cross(v)) / (2.0 * det)).norm();
 }
 
-// Every interior face locally Delaunay, and every cell that fails the alpha test has a face on the surface.
-bool faces_delaunay_and_no_tear(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr,
-                                double alpha, const std::vector<double>& average_distance, double l_char) {
-  std::vector<char> has_surface_face(nbr.size(), 0);
+}  // namespace
+
+bool faces_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr) {
   for (std::size_t t = 0; t < nbr.size(); ++t)
     for (std::size_t k = 0; k < 4; ++k) {
       const Index o = nbr[t][k];
-      if (o < 0) {
-        has_surface_face[t] = 1;
-        continue;
-      }
-      if (std::size_t(o) < t) continue;  // each interior face once, tested against the cell with the lower index
+      if (o < 0 || std::size_t(o) < t) continue;  // each interior face once, tested against the cell with the lower index
       const Index* c = &tets[4 * t];
       const Index* across = &tets[4 * std::size_t(o)];
       Index apex = across[0];  // the corner of o off the shared face
@@ -60,19 +59,23 @@ bool faces_delaunay_and_no_tear(const std::vector<Vec3>& x, const std::vector<In
       if (strictly_inside_sphere(x[std::size_t(c[0])], x[std::size_t(c[1])], x[std::size_t(c[2])], x[std::size_t(c[3])], x[std::size_t(apex)]))
         return false;
     }
-  for (std::size_t t = 0; t + 3 < tets.size(); t += 4) {
-    if (has_surface_face[t / 4]) continue;
+  return true;
+}
+
+bool no_tear(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr, double alpha,
+             const std::vector<double>& average_distance, double l_char) {
+  for (std::size_t t = 0; t < nbr.size(); ++t) {
+    if (std::any_of(nbr[t].begin(), nbr[t].end(), [](Index o) { return o < 0; })) continue;  // a face on the surface
+    const Index* v = &tets[4 * t];
     double l = l_char;
     if (!average_distance.empty())
-      l = (average_distance[std::size_t(tets[t])] + average_distance[std::size_t(tets[t + 1])] + average_distance[std::size_t(tets[t + 2])] +
-           average_distance[std::size_t(tets[t + 3])]) / 4.0;
-    if (alpha * l < circumradius(x[std::size_t(tets[t])], x[std::size_t(tets[t + 1])], x[std::size_t(tets[t + 2])], x[std::size_t(tets[t + 3])]))
-      return false;
+      l = (average_distance[std::size_t(v[0])] + average_distance[std::size_t(v[1])] + average_distance[std::size_t(v[2])] +
+           average_distance[std::size_t(v[3])]) / 4.0;
+    if (alpha * l < circumradius(x[std::size_t(v[0])], x[std::size_t(v[1])], x[std::size_t(v[2])], x[std::size_t(v[3])])) return false;
   }
   return true;
 }
 
-// No two surfaces within alpha l_char of each other across an empty gap.
 bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr, double alpha,
                        const std::vector<double>& average_distance, double l_char) {
   std::vector<std::array<Index, 3>> faces;
@@ -116,13 +119,6 @@ bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tet
         }
   }
   return true;
-}
-
-}  // namespace
-
-bool still_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& nbr, double alpha,
-                    const std::vector<double>& average_distance, double l_char) {
-  return faces_delaunay_and_no_tear(x, tets, nbr, alpha, average_distance, l_char) && no_merge_possible(x, tets, nbr, alpha, average_distance, l_char);
 }
 
 }  // namespace loom

@@ -18,10 +18,21 @@
 
 namespace loom {
 
-// `tets`: 4 point indices each, positively oriented, with their tet_face_neighbours (engine/mesh/tet_adjacency.hpp);
-// `average_distance` empty: l_char everywhere, else the local l_char of a cell or a pair of points is the mean over
-// its points.
-bool still_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& neighbours, double alpha,
-                    const std::vector<double>& average_distance, double l_char);
+// The three parts of R3.7 (remesh_3d.cpp keeps the previous mesh when all three hold; its local repair, R3.8, flips
+// the faces the first fails). `tets`: 4 point indices each, positively oriented, with their tet_face_neighbours
+// (engine/mesh/tet_adjacency.hpp); `average_distance` empty: l_char everywhere, else the local l_char of a cell or
+// a pair of points is the mean over its points.
+
+// Whether e lies inside the circumsphere of the tet (a, b, c, d) by more than the margin above (a flat tet counts
+// as failing).
+bool strictly_inside_sphere(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& e);
+// Every interior face locally Delaunay to that margin.
+bool faces_delaunay(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& neighbours);
+// No cell without a face on the surface has a circumradius above alpha l_char.
+bool no_tear(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& neighbours, double alpha,
+             const std::vector<double>& average_distance, double l_char);
+// No two surfaces within alpha l_char of each other across an empty gap.
+bool no_merge_possible(const std::vector<Vec3>& x, const std::vector<Index>& tets, const std::vector<std::array<Index, 4>>& neighbours,
+                       double alpha, const std::vector<double>& average_distance, double l_char);
 
 }  // namespace loom

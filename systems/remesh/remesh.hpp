@@ -68,6 +68,7 @@ struct RemeshStats {
   Index inserted = 0, removed = 0;  // particles added (long edges, inflow rows) and removed (close pairs, closed inlets)
   double area_change = 0.0;  // area after - area before (3D: volume)
   Index flipped = 0, slivers = 0, capped = 0;  // 3D: flips of the sliver removal, slivers left, flat caps left out
+  Index repaired = 0;                          // 3D: flips of the local repair (remesh.repair)
 };
 
 // Triangulates `positions` (one per point; coincident points are an error) with the `constraints`

@@ -306,6 +306,39 @@ void write_sorted(const Kept& kept, Remesh3dResult& out) {
   }
 }
 
+// R3.7 and R3.8: true when `out` holds the previous mesh as it is, or repaired by flips.
+bool keep_or_repair(const std::vector<Vec3>& x, const std::vector<Index>& previous_tets, std::vector<std::array<Index, 4>>& neighbours,
+                    const Remesh3dSettings& settings, const std::vector<double>& average_distance, Remesh3dResult& out) {
+  const std::vector<double> no_distances;
+  const std::vector<double>& distances = settings.local ? average_distance : no_distances;
+  auto keep = [&](std::vector<Index> tets, std::vector<std::array<Index, 4>> nbr) {
+    out.tets = std::move(tets);
+    out.merged_cell.assign(out.tets.size() / 4, 0);
+    out.kept_previous = true;
+    out.neighbours = std::move(nbr);
+    for (const BoundaryFace& f : boundary_faces(out.tets, out.neighbours)) out.surface.push_back(f.nodes);
+    finish(x, out);
+    return true;
+  };
+  const bool delaunay = faces_delaunay(x, previous_tets, neighbours);
+  if (!delaunay && !settings.repair) return false;
+  if (!no_merge_possible(x, previous_tets, neighbours, settings.alpha, distances, settings.l_char)) return false;
+  if (delaunay) return no_tear(x, previous_tets, neighbours, settings.alpha, distances, settings.l_char) && keep(previous_tets, neighbours);
+  std::vector<Index> tets = previous_tets;
+  std::vector<std::array<Index, 4>> nbr = neighbours;
+  FlipSettings slivers;
+  slivers.threshold = settings.flip_quality;  // 0: no sliver pass, and no flip is refused for the quality it makes
+  const DelaunayRepairStats repair = repair_delaunay(x, tets, slivers, &nbr);
+  if (repair.stuck > 0 || !no_tear(x, tets, nbr, settings.alpha, distances, settings.l_char)) return false;
+  if (repair.flips == 0) return keep(previous_tets, neighbours);
+  const Kept kept{std::move(tets), std::vector<char>(nbr.size(), 0), std::move(nbr)};
+  out.flipped = repair.slivers.flips23 + repair.slivers.flips32 + repair.slivers.edge_removals;
+  out.repaired = repair.flips;
+  write_sorted(kept, out);  // R3.5
+  finish(x, out);            // R3.6
+  return true;
+}
+
 }  // namespace
 
 std::array<Index, 4> canonical_tet(const std::array<Index, 4>& v) {
@@ -344,17 +377,8 @@ void remesh_points_3d(const std::vector<Vec3>& positions, const std::vector<Inde
   std::vector<std::array<Index, 4>> neighbours;
   if (!previous_tets.empty())
     neighbours = previous_neighbours && previous_neighbours->size() == previous_tets.size() / 4 ? *previous_neighbours : tet_face_neighbours(previous_tets);
-  // R3.7: a previous mesh that is still Delaunay, tears nowhere and cannot merge is the answer.
-  if (settings.keep_delaunay && !previous_tets.empty() &&
-      still_delaunay(positions, previous_tets, neighbours, settings.alpha, settings.local ? average_distance : std::vector<double>{}, settings.l_char)) {
-    out.tets = previous_tets;
-    out.merged_cell.assign(previous_tets.size() / 4, 0);
-    out.kept_previous = true;
-    out.neighbours = std::move(neighbours);
-    for (const BoundaryFace& f : boundary_faces(out.tets, out.neighbours)) out.surface.push_back(f.nodes);
-    finish(positions, out);
+  if (settings.keep_delaunay && !previous_tets.empty() && keep_or_repair(positions, previous_tets, neighbours, settings, average_distance, out))
     return;
-  }
   // R3.2's view of the previous mesh
   std::optional<Previous> previous;
   std::optional<PointInTets> in_previous;

@@ -16,6 +16,11 @@
 //  R3.7 a previous mesh that is still Delaunay (every interior face locally Delaunay at x_n, cospherical counts),
 //       that no cell of it would tear and where no two surfaces are closer than alpha l_char, is kept as it is:
 //       a resting body costs nothing and does not churn between equivalent triangulations of cospherical points.
+//  R3.8 a previous mesh that fails R3.7 only by faces that are no longer Delaunay is repaired in place by Lawson's
+//       flips (tet_flips.hpp: repair_delaunay), none of which makes a sliver, then R3.4; only if a face cannot be
+//       flipped (stuck) or a repaired cell would tear is the body triangulated again (R3.1-R3.6). Cells away from
+//       the faces that failed keep their corners, a flow pays for the faces it moved across, and near-cospherical
+//       cells (an extruded prism, a BCC pyramid) are not recut into slivers the flips then cut another way.
 // Without a previous mesh (the first mesh of a point set), every cell that passes the alpha test is kept.
 #pragma once
 
@@ -33,6 +38,7 @@ struct Remesh3dSettings {
   bool local = false;         // l_char^loc: the mean over a cell's corners of `average_distance`
   bool keep_delaunay = true;  // R3.7
   double flip_quality = 0.2;  // R3.4: cells below this 3 r_in / R are improved (0: no flips)
+  bool repair = false;        // R3.8 (with keep_delaunay)
 };
 
 struct Remesh3dResult {
@@ -40,7 +46,8 @@ struct Remesh3dResult {
   std::vector<std::array<Index, 3>> surface;   // faces used by one cell, outward
   std::vector<std::array<Index, 4>> neighbours;  // tet_face_neighbours of tets (engine/mesh/tet_adjacency.hpp)
   std::vector<char> merged_cell;               // per cell: 1 if it lies outside the previous mesh (it held no material)
-  bool kept_previous = false;                  // R3.7: the previous mesh, unchanged
+  bool kept_previous = false;                  // R3.7 (or R3.8 with nothing to flip): the previous mesh, unchanged
+  Index repaired = 0;   // R3.8: flips of the local repair (0 when the body was triangulated again)
   Index rejected = 0;   // cells inside the previous mesh dropped by the alpha test (the body tearing open)
   Index isolated = 0;   // points in no cell
   Index merged = 0;     // cells outside the previous mesh kept (two surfaces met, a void filled)

@@ -15,6 +15,7 @@
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/tet_adjacency.hpp"
 #include "engine/mesh/tet_mesh.hpp"  // kTetFaces
+#include "systems/remesh/delaunay_check.hpp"  // strictly_inside_sphere
 
 namespace loom {
 namespace {
@@ -30,6 +31,17 @@ constexpr double kMinVolume = 1e-12;
 // "Strictly better" beyond the round-off of q, so that no flip and its reverse can both be accepted.
 constexpr double kMargin = 1e-12;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kMaxRepairPasses = 50;
+constexpr double kSliver = 0.1;  // q below which a tet is a sliver (the spec's measure; Remesh3dResult::slivers)  // Lawson's flips terminate; a cap against a cycle the margins could allow
+
+// The bar the new tets of a transformation must clear, from the worst q of the tets it replaces: the sliver pass asks
+// for strictly better; the Delaunay repair for positive tets none of which is worse than both `floor` (the sliver
+// threshold) and the worst it replaces, so that it never undoes what the sliver pass did.
+struct Bar {
+  bool improve = true;
+  double floor = 0.0;
+  double operator()(double old_min) const { return improve ? old_min + kMargin : std::min(floor, old_min) - kMargin; }
+};
 
 // Sorts v ascending; returns true when the permutation was odd.
 template <std::size_t N>
@@ -115,21 +127,87 @@ class FlipMesh {
   }
 
   bool alive(Index t) const { return alive_[t] != 0; }
+  // The worse q of t and the tet across its face f.
+  double worst_across(Index t, int f) const { return std::min(q_[t], q_[nbr_[t][f]]); }
 
   // The best improving transformation involving tet t (kind 0 when none improves its cavity).
   Candidate best_around(Index t) const {
     Candidate best;
     // Candidates come back only when they improve their cavity.
     for (int f = 0; f < 4; ++f) {
-      Candidate c = flip23(t, f);
+      Candidate c = flip23(t, f, Bar{});
       if (c.kind && c.better_than(best)) best = std::move(c);
     }
     static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
     for (const auto& e : kEdges) {
-      Candidate c = edge_removal(t, e[0], e[1]);
+      Candidate c = edge_removal(t, e[0], e[1], Bar{}, kMaxRing);
       if (c.kind && c.better_than(best)) best = std::move(c);
     }
     return best;
+  }
+
+  // Whether the face of t opposite corner f is not locally Delaunay: the apex across it inside t's circumsphere, or
+  // t's own apex inside the other's, by more than the margin of strictly_inside_sphere (either, so that a repaired
+  // mesh passes R3.7 (faces_delaunay) where it passes this).
+  bool fails_delaunay(Index t, int f) const {
+    const Index o = nbr_[t][f];
+    if (o == kNoIndex) return false;
+    const Tet &T = tets_[t], &O = tets_[o];
+    const Index apex_o = apex(O, T, f), apex_t = T[f];
+    return strictly_inside_sphere(x_[T[0]], x_[T[1]], x_[T[2]], x_[T[3]], x_[apex_o]) ||
+           strictly_inside_sphere(x_[O[0]], x_[O[1]], x_[O[2]], x_[O[3]], x_[apex_t]);
+  }
+
+  // The failing interior faces, each once (from its lower tet), in the order of their sorted corners.
+  std::vector<std::pair<Index, int>> failing_faces() const {
+    std::vector<std::pair<Face, std::pair<Index, int>>> found;
+    for (Index t = 0; t < Index(tets_.size()); ++t) {
+      if (!alive_[t]) continue;
+      for (int f = 0; f < 4; ++f) {
+        const Index o = nbr_[t][f];
+        if (o == kNoIndex || o < t || !fails_delaunay(t, f)) continue;
+        const Tet& T = tets_[t];
+        found.push_back({sorted_face(T[kTetFaces[f][0]], T[kTetFaces[f][1]], T[kTetFaces[f][2]]), {t, f}});
+      }
+    }
+    std::sort(found.begin(), found.end());
+    std::vector<std::pair<Index, int>> out;
+    for (const auto& r : found) out.push_back(r.second);
+    return out;
+  }
+
+  // Lawson's flip for a failing face: 2-3 where the two tets' union is convex across it, else 3-2 around an edge of
+  // the face held by three tets, or 4-4 around one held by four (a near-coplanar pair of faces, as the rectangles
+  // of an extruded prism); the best of those that clear `bar` and whose new tets are locally Delaunay among
+  // themselves (kind 0: none).
+  Candidate lawson_flip(Index t, int f, const Bar& bar) const {
+    Candidate best = flip23(t, f, bar);
+    if (best.kind && !delaunay_inside(best.new_tets)) best = Candidate{};
+    for (int i = 0; i < 3; ++i) {
+      Candidate c = edge_removal(t, kTetFaces[f][i], kTetFaces[f][(i + 1) % 3], bar, 4);
+      if (c.kind && delaunay_inside(c.new_tets) && c.better_than(best)) best = std::move(c);
+    }
+    return best;
+  }
+
+  // Whether the faces two of `tets` share pass the in-sphere test both ways.
+  bool delaunay_inside(const std::vector<Tet>& tets) const {
+    for (std::size_t i = 0; i < tets.size(); ++i)
+      for (std::size_t j = i + 1; j < tets.size(); ++j) {
+        int shared = 0;
+        Index apex_i = kNoIndex, apex_j = kNoIndex;
+        for (Index v : tets[i]) shared += std::find(tets[j].begin(), tets[j].end(), v) != tets[j].end();
+        if (shared != 3) continue;
+        for (Index v : tets[i])
+          if (std::find(tets[j].begin(), tets[j].end(), v) == tets[j].end()) apex_i = v;
+        for (Index v : tets[j])
+          if (std::find(tets[i].begin(), tets[i].end(), v) == tets[i].end()) apex_j = v;
+        const Tet &a = tets[i], &b = tets[j];
+        if (strictly_inside_sphere(x_[a[0]], x_[a[1]], x_[a[2]], x_[a[3]], x_[apex_j]) ||
+            strictly_inside_sphere(x_[b[0]], x_[b[1]], x_[b[2]], x_[b[3]], x_[apex_i]))
+          return false;
+      }
+    return true;
   }
 
   void apply(const Candidate& c);
@@ -162,9 +240,15 @@ class FlipMesh {
 
  private:
   void link_faces(const std::vector<Index>& flat);
-  Candidate flip23(Index t, int f) const;
-  Candidate edge_removal(Index t, int la, int lb) const;
+  Candidate flip23(Index t, int f, const Bar& bar) const;
+  Candidate edge_removal(Index t, int la, int lb, const Bar& bar, int max_ring) const;
   bool ring_around(Index t, int la, int lb, Ring& ring) const;
+  // The corner of O off the face of T opposite T's corner f.
+  static Index apex(const Tet& O, const Tet& T, int f) {
+    for (Index v : O)
+      if (v != T[kTetFaces[f][0]] && v != T[kTetFaces[f][1]] && v != T[kTetFaces[f][2]]) return v;
+    return kNoIndex;
+  }
   double old_min(const std::vector<Index>& tets) const {
     double m = kInf;
     for (Index t : tets) m = std::min(m, q_[t]);
@@ -189,7 +273,7 @@ void FlipMesh::link_faces(const std::vector<Index>& flat) {
 
 // 2-3 flip across the face of t opposite corner f: the new edge joins the two apexes. Face (f0, f1, f2) is
 // outward from t, so (d1, f0, f1, f2) is positive and the new tets are (d1, d2, f_k, f_k+1).
-Candidate FlipMesh::flip23(Index t, int f) const {
+Candidate FlipMesh::flip23(Index t, int f, const Bar& bar) const {
   Candidate c;
   const Index o = nbr_[t][f];
   if (o == kNoIndex) return c;
@@ -200,7 +284,7 @@ Candidate FlipMesh::flip23(Index t, int f) const {
     if (v != fv[0] && v != fv[1] && v != fv[2]) d2 = v;
   c.old_tets = {t, o};
   c.old_min = old_min(c.old_tets);
-  const double min_q = c.old_min + kMargin;
+  const double min_q = bar(c.old_min);
   double m = kInf;
   for (int k = 0; k < 3; ++k) {
     c.new_tets.push_back({T[f], d2, fv[k], fv[(k + 1) % 3]});
@@ -253,13 +337,13 @@ bool FlipMesh::ring_around(Index t, int la, int lb, Ring& ring) const {
 // giving tets (a, p_i, p_k, p_j) and (b, p_i, p_j, p_k). Dynamic programming over sub-polygons p_i..p_j
 // (Klincsek): best[i][j] = max over k of min(best[i][k], best[k][j], q of the two tets of triangle (i, k, j)),
 // the largest worst quality any triangulation of that sub-polygon gives; best[0][n-1] is the optimum.
-Candidate FlipMesh::edge_removal(Index t, int la, int lb) const {
+Candidate FlipMesh::edge_removal(Index t, int la, int lb, const Bar& bar, int max_ring) const {
   Candidate c;
   Ring r;
-  if (!ring_around(t, la, lb, r)) return c;
+  if (!ring_around(t, la, lb, r) || int(r.tets.size()) > max_ring) return c;
   c.old_tets = r.tets;
   c.old_min = old_min(c.old_tets);
-  const double min_q = c.old_min + kMargin;
+  const double min_q = bar(c.old_min);
   const int n = int(r.p.size());
   std::array<std::array<double, kMaxRing>, kMaxRing> best;
   std::array<std::array<int, kMaxRing>, kMaxRing> split;
@@ -270,11 +354,11 @@ Candidate FlipMesh::edge_removal(Index t, int la, int lb) const {
       best[i][j] = -kInf, split[i][j] = -1;  // -inf: nothing above min_q
       for (int k = i + 1; k < j; ++k) {
         // Bound: a split is dropped as soon as it cannot beat both min_q and the best split so far.
-        const double bar = std::max(best[i][j], min_q);
+        const double need = std::max(best[i][j], min_q);
         double v = std::min(best[i][k], best[k][j]);
-        if (v > bar) v = std::min(v, new_quality({r.a, r.p[i], r.p[k], r.p[j]}));
-        if (v > bar) v = std::min(v, new_quality({r.b, r.p[i], r.p[j], r.p[k]}));
-        if (v > bar) best[i][j] = v, split[i][j] = k;
+        if (v > need) v = std::min(v, new_quality({r.a, r.p[i], r.p[k], r.p[j]}));
+        if (v > need) v = std::min(v, new_quality({r.b, r.p[i], r.p[j], r.p[k]}));
+        if (v > need) best[i][j] = v, split[i][j] = k;
       }
     }
   if (split[0][n - 1] < 0) return c;
@@ -357,11 +441,10 @@ double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return 6.0 * det * std::abs(det) / den;  // 3 r_in / R = 6 det^2 / (2S |n|), with the sign of det
 }
 
-FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings,
-                           std::vector<Index>* origin, std::vector<std::array<Index, 4>>* neighbours) {
-  const std::size_t n_input = tets.size() / 4;
-  FlipMesh mesh(points, tets, neighbours);
-  FlipStats stats;
+namespace {
+
+// R3.4's passes on a mesh: each over the tets below the threshold, worst first.
+void remove_slivers(FlipMesh& mesh, const FlipSettings& settings, FlipStats& stats) {
   mesh.count(settings.threshold, stats.below_before, stats.worst_before);
   for (int pass = 0; pass < settings.max_passes; ++pass) {
     const std::vector<Index> bad = mesh.bad_tets(settings.threshold);
@@ -381,7 +464,51 @@ FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& 
     if (done == 0) break;
   }
   mesh.count(settings.threshold, stats.below_after, stats.worst_after);
+}
+
+}  // namespace
+
+FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings,
+                           std::vector<Index>* origin, std::vector<std::array<Index, 4>>* neighbours) {
+  const std::size_t n_input = tets.size() / 4;
+  FlipMesh mesh(points, tets, neighbours);
+  FlipStats stats;
+  remove_slivers(mesh, settings, stats);
   mesh.write(tets, n_input, origin, neighbours);
+  return stats;
+}
+
+DelaunayRepairStats repair_delaunay(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& slivers,
+                                    std::vector<std::array<Index, 4>>* neighbours) {
+  const std::size_t n_input = tets.size() / 4;
+  FlipMesh mesh(points, tets, neighbours);
+  const double floor = slivers.threshold;
+  const Bar bar{false, floor};
+  DelaunayRepairStats stats;
+  for (int pass = 0; pass < kMaxRepairPasses; ++pass) {
+    const std::vector<std::pair<Index, int>> failing = mesh.failing_faces();
+    if (failing.empty()) break;
+    ++stats.passes;
+    Index done = 0;
+    for (const auto& [t, f] : failing) {
+      if (!mesh.alive(t) || !mesh.fails_delaunay(t, f)) continue;  // an earlier flip of this pass replaced or fixed it
+      const Candidate c = mesh.lawson_flip(t, f, bar);
+      if (c.kind == 0) continue;
+      mesh.apply(c);
+      ++done;
+    }
+    stats.flips += done;
+    if (done == 0) break;
+  }
+  if (stats.flips > 0 && slivers.threshold > 0.0) remove_slivers(mesh, slivers, stats.slivers);
+  // What is left: a face whose flip only the quality bar refuses is kept (the sliver pass would undo the flip), and
+  // one that no flip mends between two tets that are not slivers; one that no flip mends beside a sliver is stuck.
+  const Bar positive{false, -kInf};
+  for (const auto& [t, f] : mesh.failing_faces()) {
+    ++stats.failing_after;
+    stats.stuck += mesh.worst_across(t, f) < std::min(floor, kSliver) && mesh.lawson_flip(t, f, positive).kind == 0;
+  }
+  mesh.write(tets, n_input, nullptr, neighbours);
   return stats;
 }
 

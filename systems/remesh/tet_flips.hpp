@@ -47,4 +47,24 @@ struct FlipStats {
 FlipStats improve_by_flips(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& settings,
                            std::vector<Index>* origin = nullptr, std::vector<std::array<Index, 4>>* neighbours = nullptr);
 
+struct DelaunayRepairStats {
+  Index flips = 0;          // 2-3 and 3-2 flips made
+  Index failing_after = 0;  // interior faces still not locally Delaunay (beyond delaunay_check.hpp's margin)
+  Index stuck = 0;          // of those, faces beside a sliver (q < 0.1, or below the threshold if lower) that no flip mends
+  int passes = 0;
+  FlipStats slivers;        // the sliver pass after the flips (none when nothing was flipped)
+};
+
+// Lawson's flips toward the Delaunay triangulation from a mesh that has nearly stayed one (the 3D remesh's local
+// repair, remesh_3d.hpp): every interior face that fails the in-sphere test of delaunay_check.hpp (with its margin)
+// is flipped, 2-3 where the two tets' union is convex across it, else 3-2 around one of its edges held by three
+// tets, in passes over the failing faces in the order of their sorted corners until none is left or none can be
+// flipped. A flip is made only when its tets are positive and none is worse (q) than both `floor` and the worst of the
+// tets it replaces, so that the repair does not make the slivers improve_by_flips removes, nor undo its flips. Each
+// flip strictly lowers the lifted volume, so the passes end; the surface and the points are never changed. `tets`
+// and `neighbours` (as improve_by_flips: in, optional; out, kNoIndex on the surface) are rewritten: untouched tets in
+// their order, then the new ones. Deterministic and independent of the order of the tets (as improve_by_flips).
+DelaunayRepairStats repair_delaunay(const std::vector<Vec3>& points, std::vector<Index>& tets, const FlipSettings& slivers,
+                                    std::vector<std::array<Index, 4>>* neighbours = nullptr);
+
 }  // namespace loom

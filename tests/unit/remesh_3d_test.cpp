@@ -315,5 +315,40 @@ TEST(Remesh3d, CanonicalCornersKeepTheOrientation) {
   EXPECT_EQ(canonical_tet(c), c);
 }
 
+// R3.8: a BCC block whose points have moved a little (a random 10 % of the spacing) is no longer Delaunay at a few
+// faces; the repair flips them instead of triangulating it again: most cells keep their corners, the volume is the
+// previous mesh's at the new positions exactly (flips keep it), and the repaired mesh is kept as it is by the next
+// remesh at the same positions (no churn). Without the repair the body is triangulated again.
+TEST(Remesh3d, AMeshThatIsNearlyDelaunayIsRepairedByFlips) {
+  const TetMeshData box = generate_bcc_box({Vec3::Zero(), Vec3(1.0, 0.6, 0.8), 10, 6, 8});
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.1 * 0.1, 0.1 * 0.1);
+  std::vector<Vec3> x = box.X;
+  for (Vec3& p : x)
+    for (int c = 0; c < 3; ++c) p[c] += jitter(rng);
+  Remesh3dSettings repair = local_alpha();
+  repair.repair = true;
+  const Remesh3dResult r = remesh(x, box.tets, repair);
+  EXPECT_FALSE(r.kept_previous);
+  EXPECT_GT(r.repaired, 0);
+  EXPECT_EQ(r.merged, 0);
+  EXPECT_EQ(r.rejected, 0);
+  EXPECT_NEAR(r.volume, volume_of(x, box.tets), 1e-14);
+  const auto before = sorted_cells(box.tets), after = sorted_cells(r.tets);
+  std::vector<std::array<Index, 4>> common;
+  std::set_intersection(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(common));
+  std::printf("[remesh 3d] BCC block moved by 10 %% of h: %ld repair flips, %ld sliver flips, %zu of %zu cells kept\n", long(r.repaired),
+              long(r.flipped), common.size(), before.size());
+  EXPECT_GT(10 * common.size(), 9 * before.size());
+  const Remesh3dResult again = remesh(x, r.tets, repair);
+  EXPECT_TRUE(again.kept_previous);
+  EXPECT_EQ(again.tets, r.tets);
+  const Remesh3dResult full = remesh(x, box.tets, local_alpha());  // the default: no repair
+  EXPECT_EQ(full.repaired, 0);
+  EXPECT_FALSE(full.kept_previous);
+  std::printf("[remesh 3d] the same without the repair: volume %.6f against the previous mesh's %.6f (surface cells recut)\n", full.volume,
+              r.volume);
+}
+
 }  // namespace
 }  // namespace loom

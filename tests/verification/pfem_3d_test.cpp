@@ -164,6 +164,41 @@ TEST(Pfem3d, TheExtrudedConstrainedBlockPressedSlowlyKeepsItsMeshAndIsFem) {
               "(reaction %.6g N per 0.25 mm)\n", pfem.column("reaction").back());
 }
 
+// The shipped scene (200 steps at 1e-3 mm, remesh.repair = true) against 3D fem on the same mesh: the repair flips
+// where the prisms' cut stops being Delaunay instead of triangulating the block again, so fewer steps change the
+// connectivity and the reaction stays closer to fem's than without it (measured: 68 against 196 changes; 6.461 and
+// 6.310 N per mm against fem's 6.602; the spec's stage 3 asks for none and fem bit for bit, which this mesh's
+// cospherical prisms do not allow: docs/pfem_3d.md §4).
+TEST(Pfem3d, TheRepairKeepsTheExtrudedConstrainedBlockCloserToFem) {
+  const std::string pfem_text = testing::read_text(verification::scene_path("constrained_block_pfem_3d.toml"));
+  std::string fem_text = erase_between(pfem_text, "[remesh]", "[[probe]]\nname = \"reaction\"");
+  fem_text = erase_between(fem_text, "[[probe]]\nname = \"changed\"", "[[probe]]\nname = \"newton\"");
+  fem_text.replace(fem_text.find("method = \"pfem\""), 15, "method = \"fem\"");
+  const std::vector<std::string> sets = {"output.every=0"};
+  std::vector<std::string> off = sets;
+  off.push_back("remesh.repair=false");
+  const auto fem = testing::run_for_probes(testing::scene_from_text(fem_text, sets), "pfem_3d_repair_fem");
+  const auto repaired = testing::run_for_probes(testing::scene_from_text(pfem_text, sets), "pfem_3d_repair_on");
+  const auto triangulated = testing::run_for_probes(testing::scene_from_text(pfem_text, off), "pfem_3d_repair_off");
+  ASSERT_EQ(repaired.rows.size(), 201u);
+  ASSERT_EQ(triangulated.rows.size(), 201u);
+  ASSERT_EQ(fem.rows.size(), 201u);
+  const auto count = [](const std::vector<double>& v) { return std::count_if(v.begin(), v.end(), [](double c) { return c > 0.0; }); };
+  const auto changes_on = count(repaired.column("changed")), changes_off = count(triangulated.column("changed"));
+  const auto repairs = count(repaired.column("repaired"));
+  const double r_fem = fem.column("reaction").back(), r_on = repaired.column("reaction").back(), r_off = triangulated.column("reaction").back();
+  const double err_on = std::abs(r_on / r_fem - 1.0), err_off = std::abs(r_off / r_fem - 1.0);
+  std::printf("[pfem 3d] extruded constrained block, 200 steps: with the repair %ld changes (%ld by repair flips), reaction %.4f N per mm "
+              "(%.2f %% from fem's %.4f); without %ld changes, %.4f N (%.2f %%)\n", long(changes_on), long(repairs), -4.0 * r_on,
+              100.0 * err_on, -4.0 * r_fem, long(changes_off), -4.0 * r_off, 100.0 * err_off);
+  EXPECT_GT(repairs, 0);
+  EXPECT_LT(2 * changes_on, changes_off);
+  EXPECT_LT(err_on, err_off);
+  EXPECT_LT(err_on, 0.03);
+  // Every change of the repaired run keeps the block's volume: flips do not move the surface.
+  for (double dv : repaired.column("volume_change")) EXPECT_LT(std::abs(dv), 1e-12);
+}
+
 TEST(Pfem3d, TheResultDoesNotDependOnTheThreadCount) {
   const std::vector<std::string> sets = compression_sets("tet10", "btm", 2);
   testing::TempDir dir("pfem_3d_threads");

@@ -109,7 +109,7 @@ PfemSettings pfem_settings_of(const SceneSpec& scene) {
   const PfemSpec& p = scene.pfem;
   s.remesh.alpha = p.alpha, s.remesh.l_char = p.lchar, s.remesh.local = p.local;
   s.remesh_3d.alpha = p.alpha, s.remesh_3d.l_char = p.lchar, s.remesh_3d.local = p.local;
-  s.remesh_3d.keep_delaunay = p.keep_delaunay, s.remesh_3d.flip_quality = p.flip_quality;
+  s.remesh_3d.keep_delaunay = p.keep_delaunay, s.remesh_3d.repair = p.repair, s.remesh_3d.flip_quality = p.flip_quality;
   s.map.scheme = p.btm ? MapScheme::btm : MapScheme::cpm;
   s.map.iso = p.iso == 0 ? IsoMode::iso0 : p.iso == 1 ? IsoMode::iso1 : IsoMode::iso2;
   s.every = p.every;

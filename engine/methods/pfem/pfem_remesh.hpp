@@ -35,12 +35,12 @@ struct RemeshReport {
   bool changed = false;       // the connectivity changed: sparsity, colouring and dofs were rebuilt
   Index triangles = 0, rejected = 0, isolated = 0, merged = 0, crossings = 0;  // triangles: the cells (3D: tetrahedra)
   Index inserted = 0, removed = 0;             // particles
-  Index flipped = 0, slivers = 0, capped = 0;  // 3D (Remesh3dResult)
+  Index flipped = 0, slivers = 0, capped = 0, repaired = 0;  // 3D (Remesh3dResult)
   double area_before = 0.0, area_after = 0.0;  // of the corner cells in X_n (before: of the mesh before any change; 3D: volumes)
   double new_material_mass = 0.0;  // dynamic es_pfem: the mass of the cells that filled gaps where surfaces met (added)
   MapStats map;
   RemeshStats stats() const {
-    return {changed, rejected, isolated, merged, crossings, inserted, removed, area_after - area_before, flipped, slivers, capped};
+    return {changed, rejected, isolated, merged, crossings, inserted, removed, area_after - area_before, flipped, slivers, capped, repaired};
   }
 };
 

@@ -246,7 +246,7 @@ RemeshReport remesh_model(const PfemSettings& settings, double t_n, PfemTopology
     merged[b].resize(r.tets.size() / 4, 0);
     kept_all = kept_all && r.kept_previous;
     report.rejected += r.rejected, report.isolated += r.isolated, report.merged += r.merged, report.triangles += Index(r.tets.size() / 4);
-    report.flipped += r.flipped, report.slivers += r.slivers, report.capped += r.capped;
+    report.flipped += r.flipped, report.slivers += r.slivers, report.capped += r.capped, report.repaired += r.repaired;
     report.area_after += r.volume;
   }
   // 2. Did the connectivity change?
