@@ -272,6 +272,7 @@ void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::v
           case RemeshQuantity::flipped: values[k] = remesh.flipped; break;
           case RemeshQuantity::slivers: values[k] = remesh.slivers; break;
           case RemeshQuantity::capped: values[k] = remesh.capped; break;
+          case RemeshQuantity::repaired: values[k] = remesh.repaired; break;
         }
         break;
       case ProbeKind::wall_force: {
