@@ -43,10 +43,11 @@ void read_pfem_options(SceneSpec& s, const TableReader& root) {
       walls[i].error("spacing", "a spacing at the wall is made by particle insertion, which is off (set remesh.insert_above > 0)");
   s.pfem.keep_delaunay = remesh.boolean("keep_delaunay");
   s.pfem.repair = remesh.boolean("repair");
-  // es_pfem shares the particles' mass out to the new tetrahedra (new_triangle_mass.hpp), exactly through a
-  // triangulation and its sliver flips; through the repair's flips it drifts (1.9e-6 of the mass in the slump's
-  // first half second, a printed layer's 1.3e-8): not offered until that transfer is exact there too.
-  if (es && s.pfem.repair) remesh.error("repair", "remesh.repair is for method pfem: es_pfem's mass transfer is not exact through its flips yet");
+  // Measured with es_pfem (docs/pfem_3d.md §2): the slump flow's first half second diverges at step 107 (a cell
+  // inverts after a repair), the printed layer stands 15 % taller than with the triangulating remesh.
+  if (es && s.pfem.repair)
+    remesh.error("repair", "remesh.repair is for method pfem: es_pfem's free-surface flows ran worse on repaired meshes (a slump "
+                           "diverged, a printed layer stood 15 % too tall)");
   s.pfem.flip_quality = remesh.real("flip_quality");
   s.pfem.max_new_material = remesh.real("max_new_material");
   if (s.scene.dimension == 3) {

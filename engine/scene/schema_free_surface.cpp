@@ -115,8 +115,8 @@ void add_free_surface_keys(std::vector<KeySpec>& s) {
                   "meeting) is repaired in place by flips toward the Delaunay mesh that make no sliver (Lawson's 2-3, 3-2 and 4-4), "
                   "instead of triangulating the body again: cells elsewhere keep their corners and their state, a step costs less "
                   "than a triangulation, and near-cospherical cells are not recut. A face no flip mends beside a sliver, or a "
-                  "repaired cell that would tear, falls back to the whole remesh. Method pfem only (es_pfem's mass transfer is "
-                  "not exact through these flips yet).").by_default("false"));
+                  "repaired cell that would tear, falls back to the whole remesh. Method pfem only (es_pfem's flows were measured "
+                  "worse on repaired meshes).").by_default("false"));
   s.push_back(key("remesh.flip_quality", K::real,
                   "3D: tetrahedra whose 3 r_in / R (1 regular, 0 flat) is below this are improved by flips with the particles fixed "
                   "(2-3, 3-2, edge removal; the surface untouched); 0: none.").by_default("0.2").at_least(0).below(1));
