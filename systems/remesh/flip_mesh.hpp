@@ -152,9 +152,13 @@ class FlipMesh {
     const Index o = nbr_[t][f];
     if (o == kNoIndex) return false;
     const Tet &T = tets_[t], &O = tets_[o];
-    const Index apex_o = apex(O, T, f), apex_t = T[f];
-    return strictly_inside_sphere(x_[T[0]], x_[T[1]], x_[T[2]], x_[T[3]], x_[apex_o]) ||
-           strictly_inside_sphere(x_[O[0]], x_[O[1]], x_[O[2]], x_[O[3]], x_[apex_t]);
+    return fails_either_way(T, O, apex(O, T, f), T[f]);
+  }
+
+  // The shared face of a and b fails the in-sphere test: b's apex inside a's circumsphere, or a's inside b's.
+  bool fails_either_way(const Tet& a, const Tet& b, Index apex_b, Index apex_a) const {
+    return strictly_inside_sphere(x_[a[0]], x_[a[1]], x_[a[2]], x_[a[3]], x_[apex_b]) ||
+           strictly_inside_sphere(x_[b[0]], x_[b[1]], x_[b[2]], x_[b[3]], x_[apex_a]);
   }
 
   // The failing interior faces, each once (from its lower tet), in the order of their sorted corners.
@@ -201,10 +205,7 @@ class FlipMesh {
           if (std::find(tets[j].begin(), tets[j].end(), v) == tets[j].end()) apex_i = v;
         for (Index v : tets[j])
           if (std::find(tets[i].begin(), tets[i].end(), v) == tets[i].end()) apex_j = v;
-        const Tet &a = tets[i], &b = tets[j];
-        if (strictly_inside_sphere(x_[a[0]], x_[a[1]], x_[a[2]], x_[a[3]], x_[apex_j]) ||
-            strictly_inside_sphere(x_[b[0]], x_[b[1]], x_[b[2]], x_[b[3]], x_[apex_i]))
-          return false;
+        if (fails_either_way(tets[i], tets[j], apex_j, apex_i)) return false;
       }
     return true;
   }
