@@ -99,8 +99,8 @@ void check_dimension_support(const SceneSpec& s, const TableReader& root) {
   for (std::size_t k = 0; k < probes.size() && k < s.probes.size(); ++k) {
     const ProbeKind kind = s.probes[k].kind;
     const auto& t = probes[k];
-    if (kind == ProbeKind::stress || kind == ProbeKind::pressure_jump)
-      t.error("kind", "kind = \"" + t.string("kind") + "\" reads triangles and quadrilaterals: two-dimensional");
+    if (kind == ProbeKind::pressure_jump)
+      t.error("kind", "kind = \"pressure_jump\" reads triangles and quadrilaterals: two-dimensional");
     if (kind == ProbeKind::angular_momentum && !t.has("component"))
       t.error("", "missing key component: in 3D an angular_momentum probe reads one component (x, y or z) of sum m r x v");
   }

@@ -47,8 +47,10 @@ void read_probe(SceneSpec& s, const TableReader& t) {
   p.component = component == "y" ? 1 : component == "z" ? 2 : 0;
   if (component == "z" && s.scene.dimension < 3) t.error("component", "component z in a two-dimensional scene (scene.dimension = 2)");
   p.stress = pick<StressComponent>(component, {{"xx", StressComponent::xx}, {"yy", StressComponent::yy}, {"xy", StressComponent::xy},
-                                               {"zz", StressComponent::zz}, {"von_mises", StressComponent::von_mises},
-                                               {"pressure", StressComponent::pressure}});
+                                               {"zz", StressComponent::zz}, {"yz", StressComponent::yz}, {"xz", StressComponent::xz},
+                                               {"von_mises", StressComponent::von_mises}, {"pressure", StressComponent::pressure}});
+  if ((component == "yz" || component == "xz") && s.scene.dimension < 3)
+    t.error("component", "component " + component + " in a two-dimensional scene (scene.dimension = 2): plane strain has no shear out of plane");
   const bool vector_component = component == "x" || component == "y" || component == "z";
   if (p.kind == ProbeKind::wall_force && component == "normal") {
     p.component = 3;  // after x, y, z
@@ -62,7 +64,8 @@ void read_probe(SceneSpec& s, const TableReader& t) {
       t.error("component", "component r (the distance from the z axis) is read by extent probes in 3D (scene.dimension = 3)");
     p.component = 4;  // after x, y, z and normal
   } else if (t.has("component") && (p.kind == ProbeKind::stress) == vector_component) {
-    t.error("component", p.kind == ProbeKind::stress       ? "a stress probe reads xx, yy, xy, zz, von_mises or pressure"
+    t.error("component", p.kind == ProbeKind::stress       ? (s.scene.dimension == 3 ? "a stress probe reads xx, yy, zz, xy, yz, xz, von_mises or pressure"
+                                                                      : "a stress probe reads xx, yy, xy, zz, von_mises or pressure")
                          : p.kind == ProbeKind::wall_force ? std::string("a wall_force probe reads component x, y") +
                                                                  (s.scene.dimension == 3 ? ", z" : "") + " or normal"
                                                            : "kind = \"" + kind + "\" reads component x or y");

@@ -391,6 +391,11 @@ class Loader {
     s.output.directory = t.has("directory") ? t.string("directory") : "out/" + s.scene.name;
     s.output.every = int(t.integer("every"));
     s.output.checkpoint_every = int(t.integer("checkpoint_every"));
+    s.output.nodal_stress = t.boolean("nodal_stress");
+    if (s.output.nodal_stress && is_mpm(s.scene.method))
+      t.error("nodal_stress", std::string("method ") + (s.scene.method == Method::mpm ? "mpm" : "mpm_fem") +
+                                  " writes each particle's stress (point data stress of the particles' file); nodal_stress averages "
+                                  "the cells of fem, pfem and es_pfem meshes");
     s.output.where = t.has("directory") ? t.where("directory") : t.where();
   }
 

@@ -38,7 +38,7 @@ enum class TangentUpdate { every_iteration, once_per_step };
 enum class MeshGenerator { rectangle, cooks_membrane, file, box };
 enum class ProbeKind { reaction, point, newton, extent, pressure_jump, volume, remesh, energy, stress, wall_force, penetration, speed, mass,
                        angular_momentum, section };
-enum class StressComponent { xx, yy, xy, zz, von_mises, pressure };
+enum class StressComponent { xx, yy, xy, zz, yz, xz, von_mises, pressure };
 enum class RemeshQuantity { area_change, changed, rejected, isolated, merged, crossings, inserted, removed, flipped, slivers, capped, repaired };
 
 // A scalar given as a number or an expression in t, x, y (compiled later by Expression).
@@ -309,6 +309,7 @@ struct OutputSpec {
   std::string directory;
   int every = 1;
   int checkpoint_every = 0;  // steps between checkpoints (0: none)
+  bool nodal_stress = false; // point data nodal_stress and nodal_von_mises on mesh frames (fem, pfem, es_pfem)
   SourceRef where;           // of the directory key (or of [output])
 };
 

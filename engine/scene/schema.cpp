@@ -333,9 +333,10 @@ std::vector<KeySpec> build_schema() {
                   "quadrature points, potential -f_ext . u of the nodal external loads; the smoothed elements (es_up, es_u, fem_up, "
                   "fem_u; methods fem and es_pfem): the energy stored in their domains' b^e (es_up and fem_up: its deviatoric part, and "
                   "1/2 p^T K_pp p of the pressure unknown). "
-                  "stress (fem, pfem): a `component` of the Cauchy stress at `at` (xx, yy, xy, zz, von_mises, or pressure = -tr/3), "
-                  "extrapolated linearly from the quadrature points of the cell that holds the point and averaged over the cells "
-                  "that share it (a node). "
+                  "stress (fem, pfem, es_pfem; 2D and 3D): a `component` of the Cauchy stress at `at` (xx, yy, xy, zz, von_mises, "
+                  "or pressure = -tr/3; in 3D also yz and xz), extrapolated linearly from the quadrature points of the cell that "
+                  "holds the point (three of a tri6, four of a tet10) and averaged over the cells that share it (a node, an edge, a "
+                  "face). "
                   "Method mpm: point probes follow a tracer point that starts at `at` and moves with the grid (the material "
                   "point at `at`), extent probes the particles, pressure_jump is the mean |p_a - p_b| over the active grid's sides. "
                   "wall_force: a `component` (x, y, or normal: along the wall's normal, a single plane) of the force the `wall` exerts "
@@ -352,8 +353,8 @@ std::vector<KeySpec> build_schema() {
   s.push_back(key("probe[].inlet", K::string, "Of a volume or mass probe: count only the part of the body downstream of this [[inlet]]'s section."));
   s.push_back(key("probe[].wall", K::string, "Wall of a wall_force probe, or of a penetration probe (default: every wall)."));
   s.push_back(key("probe[].boundary", K::string, "Boundary of a reaction probe."));
-  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z; an extent probe in 3D also r, the distance from the z axis, sqrt(x^2 + y^2): the spread of a slump), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), of a section probe (area, x, y, z), or of a stress probe.")
-                  .one_of({"x", "y", "z", "r", "normal", "area", "xx", "yy", "xy", "zz", "von_mises", "pressure"}));
+  s.push_back(key("probe[].component", K::choice, "Component of a reaction, point or extent probe (x, y; 3D: z; an extent probe in 3D also r, the distance from the z axis, sqrt(x^2 + y^2): the spread of a slump), of a 3D angular_momentum probe (x, y, z), of a wall_force probe (x, y, normal), of a section probe (area, x, y, z), or of a stress probe (xx, yy, xy, zz, von_mises, pressure; 3D also yz, xz).")
+                  .one_of({"x", "y", "z", "r", "normal", "area", "xx", "yy", "xy", "zz", "yz", "xz", "von_mises", "pressure"}));
   s.push_back(key("probe[].at", K::vec2, "Reference coordinates of a point or stress probe; of an angular_momentum probe, the point the moments are taken about (default the origin); a point of a section probe's plane."));
   s.push_back(key("probe[].normal", K::vec2, "Of a section probe (3D): the normal of the cutting plane (need not be a unit vector)."));
   s.push_back(key("probe[].group", K::string, "Instead of at: a physical point of the body's mesh file, where the point or stress probe reads."));
@@ -388,6 +389,12 @@ std::vector<KeySpec> build_schema() {
                   "whole state of the run; only the newest is kept, and one is also written when the run is interrupted "
                   "(SIGINT, SIGTERM). `loom run SCENE --restart DIR` continues from it as if the run had not stopped.")
                   .by_default("0").at_least(0));
+  s.push_back(key("output.nodal_stress", K::boolean,
+                  "Also write the stress at the nodes (methods fem, pfem, es_pfem): point data nodal_stress (9 components, "
+                  "row-major) and nodal_von_mises, each node's value the mean of the cell data stress of the cells that share "
+                  "it, weighted by their current volume (area in 2D): smooth contours in ParaView, where the cell data show "
+                  "one value per cell.")
+                  .by_default("false"));
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "engine/mesh/quad9_shape.hpp"
+#include "engine/mesh/simplex_geometry.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 #include "systems/output/mesh_energy.hpp"
 #include "systems/output/tet_sections.hpp"
@@ -21,6 +22,8 @@ double stress_component(const Mat3& sigma, StressComponent c) {
     case StressComponent::yy: return sigma(1, 1);
     case StressComponent::xy: return sigma(0, 1);
     case StressComponent::zz: return sigma(2, 2);
+    case StressComponent::yz: return sigma(1, 2);
+    case StressComponent::xz: return sigma(0, 2);
     case StressComponent::pressure: return -sigma.trace() / 3.0;
     case StressComponent::von_mises: return std::sqrt(1.5 * (sigma - sigma.trace() / 3.0 * Mat3::Identity()).squaredNorm());
   }
@@ -51,10 +54,22 @@ std::optional<Vec2> quad9_sample(const Nodes<2>& nodes, const Cells& cb, Index c
 // quad9: the stress at reference coordinates l = (xi, eta) from its 3 x 3 Gauss values, by the biquadratic
 // Lagrange interpolation through the Gauss points (exact for a biquadratic stress field): the 1D quadratic
 // through -g, 0, g evaluated at xi is quadratic_lagrange(xi / g).
-double gauss_lagrange_weight(const std::array<double, 3>& l, int q) {
+double gauss_lagrange_weight(const std::array<double, 4>& l, int q) {
   const double g = std::sqrt(0.6);
   const Eigen::Vector3d Lx = quadratic_lagrange(l[0] / g), Ly = quadratic_lagrange(l[1] / g);
   return Lx[q % 3] * Ly[q / 3];  // quad9_gauss: point q = 3 j + i at (g_i, g_j)
+}
+
+// Weight of quadrature point q in the stress at barycentric coordinates l of a simplex: the linear interpolation through
+// the points of the rules whose point q has l_q = a and the others b (the triangle's 3 points: a = 2/3, b = 1/6; the
+// tetrahedron's 4 points, point q nearest corner q: kTet4RuleA, kTet4RuleB), (l_q - b) / (a - b), exact for a linear
+// stress field; one point: its value; quad9: the biquadratic interpolation through its Gauss points.
+double point_weight(int per_cell, int dimension, const std::array<double, 4>& l, int q) {
+  if (per_cell == 1) return 1.0;
+  if (per_cell == 9) return gauss_lagrange_weight(l, q);
+  if (dimension == 2) return 2.0 * l[std::size_t(q)] - 1.0 / 3.0;
+  constexpr double a = 0.58541019662496845446, b = 0.13819660112501051518;  // kTet4RuleA, kTet4RuleB
+  return (l[std::size_t(q)] - b) / (a - b);
 }
 
 std::array<Vec3, 4> corners_at(const Nodes<3>& nodes, const Cells& cb, Index c) {
@@ -170,20 +185,30 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::
       }
     }
     std::vector<StressSample> samples;
-    if constexpr (D == 2)  // the loader refuses stress probes in 3D
+    if constexpr (D == 3)
+      if (p.kind == ProbeKind::stress)
+        for (std::size_t b = 0; b < cells.size(); ++b) {
+          const Cells& cb = cells[b];
+          for (Index c = 0; c < cb.size(); ++c) {
+            if (p.body != kNoIndex && cb.body[c] != p.body) continue;
+            const auto l = barycentric(nodes.X[cb.node(c, 0)], nodes.X[cb.node(c, 1)], nodes.X[cb.node(c, 2)], nodes.X[cb.node(c, 3)], probe_point<D>(p));
+            if (l && l->minCoeff() >= -1e-9) samples.push_back({Index(b), c, {(*l)[0], (*l)[1], (*l)[2], (*l)[3]}});
+          }
+        }
+    if constexpr (D == 2)
       if (p.kind == ProbeKind::stress)
         for (std::size_t b = 0; b < cells.size(); ++b) {
         const Cells& cb = cells[b];
         for (Index c = 0; c < cb.size(); ++c) {
           if (p.body != kNoIndex && cb.body[c] != p.body) continue;
           if (cb.type == CellType::quad9) {
-            if (const auto xi = quad9_sample(nodes, cb, c, p.at)) samples.push_back({Index(b), c, {xi->x(), xi->y(), 0.0}});
+            if (const auto xi = quad9_sample(nodes, cb, c, p.at)) samples.push_back({Index(b), c, {xi->x(), xi->y(), 0.0, 0.0}});
             continue;
           }
           const Vec2 &a = nodes.X[cb.node(c, 0)], &e1 = nodes.X[cb.node(c, 1)], &e2 = nodes.X[cb.node(c, 2)];
           if (!(signed_area(a, e1, e2) > 0.0)) continue;
           const auto l = barycentric(a, e1, e2, p.at);
-          if (l && l->minCoeff() >= -1e-9) samples.push_back({Index(b), c, {(*l)[0], (*l)[1], (*l)[2]}});
+          if (l && l->minCoeff() >= -1e-9) samples.push_back({Index(b), c, {(*l)[0], (*l)[1], (*l)[2], 0.0}});
         }
       }
     plan.samples.push_back(std::move(samples));
@@ -307,20 +332,17 @@ void evaluate_probes(const StepContext& ctx, const ProbePlan& plan, const std::v
         break;
       }
       case ProbeKind::stress: {
-        if constexpr (D == 2) {
-          Mat3 mean = Mat3::Zero();
-          for (const StressSample& s : plan.samples[k]) {
-            const QuadPoints<D>& q = quad[std::size_t(s.block)];
-            const BodyMaterial& m = materials[std::size_t(cells[std::size_t(s.block)].body[s.cell])];
-            for (int i = 0; i < q.per_cell; ++i) {
-              Mat3 sigma;
-              if (!point_stress(m, q, s.cell * q.per_cell + i, sigma)) sigma.setConstant(kNaN);
-              const double w = q.per_cell == 1 ? 1.0 : q.per_cell == 9 ? gauss_lagrange_weight(s.l, i) : 2.0 * s.l[std::size_t(i)] - 1.0 / 3.0;
-              mean += w * sigma / double(plan.samples[k].size());
-            }
+        Mat3 mean = Mat3::Zero();
+        for (const StressSample& s : plan.samples[k]) {
+          const QuadPoints<D>& q = quad[std::size_t(s.block)];
+          const BodyMaterial& m = materials[std::size_t(cells[std::size_t(s.block)].body[s.cell])];
+          for (int i = 0; i < q.per_cell; ++i) {
+            Mat3 sigma;
+            if (!point_stress(m, q, s.cell * q.per_cell + i, sigma)) sigma.setConstant(kNaN);
+            mean += point_weight(q.per_cell, D, s.l, i) * sigma / double(plan.samples[k].size());
           }
-          values[k] = plan.samples[k].empty() ? kNaN : stress_component(mean, p.stress);
         }
+        values[k] = plan.samples[k].empty() ? kNaN : stress_component(mean, p.stress);
         break;
       }
       case ProbeKind::pressure_jump: {

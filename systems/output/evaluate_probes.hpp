@@ -47,7 +47,7 @@ namespace loom {
 
 struct StressSample {
   Index block = 0, cell = 0;
-  std::array<double, 3> l{};  // barycentric coordinates of the point in the cell's corner triangle; quad9: (xi, eta, 0)
+  std::array<double, 4> l{};  // barycentric coordinates of the point in the cell's corner triangle (tetrahedron); quad9: (xi, eta)
 };
 
 // The probe's reference point `at` in D dimensions (3D: with at_z).
@@ -80,7 +80,7 @@ double fraction_downstream(const Vec2& a, const Vec2& b, const Vec2& c, const Ve
 
 // Finds the node of each point probe (nearest in reference coordinates, among the nodes of its body), the
 // nodes of extent probes and the interior edges of pressure_jump probes.
-// Instantiated for D = 2 and 3 (3D: the kinds the loader allows there, without stress and pressure_jump).
+// Instantiated for D = 2 and 3 (3D: the kinds the loader allows there, without pressure_jump).
 template <int D>
 ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::vector<Cells>& cells,
                       const std::vector<Index>& node_body);

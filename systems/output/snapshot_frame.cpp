@@ -1,13 +1,49 @@
 #include "systems/output/snapshot_frame.hpp"
 
-#include "engine/mesh/triangle_geometry.hpp"
-
 #include <cmath>
 
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/triangle_geometry.hpp"
 
 namespace loom {
+namespace {
+
+// Point data nodal_stress and nodal_von_mises: at each node the mean of the cell stresses `cell_stress` (9 per cell)
+// of the cells that share it, weighted by their current volume (the sum of their points' dV_n); NaN at a node of no
+// cell (a free particle). Summed cell by cell in order, so the result does not depend on the thread count.
+template <int D>
+void add_nodal_stress(Index n_nodes, const std::vector<Cells>& cells, const std::vector<QuadPoints<D>>& quad,
+                      const std::vector<double>& cell_stress, std::vector<FrameArray>& point_arrays) {
+  const std::size_t n = std::size_t(n_nodes);
+  FrameArray nodal{"nodal_stress", 9, std::vector<double>(9 * n, 0.0)};
+  FrameArray von_mises{"nodal_von_mises", 1, std::vector<double>(n, kNaN)};
+  std::vector<double> weight(n, 0.0);
+  std::size_t k = 0;
+  for (std::size_t b = 0; b < cells.size(); ++b)
+    for (Index c = 0; c < cells[b].size(); ++c, ++k) {
+      double volume = 0.0;
+      for (int q = 0; q < quad[b].per_cell; ++q) volume += quad[b].weight_n[c * quad[b].per_cell + q];
+      if (!(volume > 0.0) || !std::isfinite(cell_stress[9 * k])) continue;
+      for (int a = 0; a < cells[b].stride; ++a) {
+        const std::size_t i = std::size_t(cells[b].node(c, a));
+        weight[i] += volume;
+        for (int j = 0; j < 9; ++j) nodal.values[9 * i + std::size_t(j)] += volume * cell_stress[9 * k + std::size_t(j)];
+      }
+    }
+  for (std::size_t i = 0; i < n; ++i) {
+    Mat3 sigma;
+    for (int j = 0; j < 9; ++j) {
+      double& value = nodal.values[9 * i + std::size_t(j)];
+      value = weight[i] > 0.0 ? value / weight[i] : kNaN;
+      sigma(j / 3, j % 3) = value;
+    }
+    von_mises.values[i] = std::sqrt(1.5 * (sigma - sigma.trace() / 3.0 * Mat3::Identity()).squaredNorm());
+  }
+  point_arrays.push_back(std::move(nodal));
+  point_arrays.push_back(std::move(von_mises));
+}
+
+}  // namespace
 
 template <int D>
 void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Nodes<D>& nodes,
@@ -90,6 +126,7 @@ void snapshot_frame(const StepContext& ctx, const std::vector<BodyMaterial>& mat
   if (!phi.values.empty()) frame.point_arrays.push_back(std::move(phi));
   if (!mean_stress.values.empty()) frame.point_arrays.push_back(std::move(mean_stress));
   if (!nodal_J.values.empty()) frame.point_arrays.push_back(std::move(nodal_J));
+  if (ctx.scene && ctx.scene->output.nodal_stress) add_nodal_stress(nodes.size(), cells, quad, stress.values, frame.point_arrays);
   frame.cell_arrays = {std::move(stress), std::move(pressure), std::move(J), std::move(von_mises), std::move(body)};
   frame.notes = {{"pressure_definition", kPressureDefinition}};
 }

@@ -3,6 +3,8 @@
 // (9 components,
 // row-major), pressure = -tr(sigma)/3, J = det F, von Mises stress sqrt(3/2 dev(sigma):dev(sigma)), body.
 // Cells with several quadrature points report the average of their points.
+// With output.nodal_stress, also point data nodal_stress (9 components) and nodal_von_mises: each node's value the
+// volume-weighted mean of the cell stress of its cells.
 #pragma once
 
 #include <vector>

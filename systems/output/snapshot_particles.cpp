@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "engine/core/parallel.hpp"
+#include "engine/mesh/quad9_shape.hpp"
 
 namespace loom {
 
@@ -66,9 +67,47 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
   if (mixed) frame.notes.emplace_back("mean_stress_definition", kMeanStressDefinition);
 }
 
+namespace {
+
+// Method mpm_fem: the FEM cells' Cauchy stress, the mean over their Gauss points of F = dx/dX^ on the undeformed cell
+// X^ = X - u_n (as their energy in particle_probes.cpp), appended to the cell data of the cells written.
+void add_fem_cell_stress(const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity, const Nodes<2>& g,
+                         std::vector<FrameArray>& cell_arrays) {
+  const std::size_t n = activity.active_cells.size();
+  FrameArray body{"body", 1, std::vector<double>(n, -1.0)};
+  FrameArray stress{"stress", 9, std::vector<double>(9 * n, kNaN)};
+  FrameArray von_mises{"von_mises", 1, std::vector<double>(n, kNaN)};
+  const Quad9Gauss& rule = quad9_gauss();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Index c = activity.active_cells[k];
+    if (c < activity.always_active_from) continue;
+    const Index b = grid.body[c];
+    Quad9Coordinates x, X;
+    for (int a = 0; a < 9; ++a) {
+      const Index i = grid.node(c, a);
+      x.row(a) = (g.X[i] + g.u[i]).transpose();
+      X.row(a) = (g.X[i] - g.u_n[i]).transpose();
+    }
+    Mat3 mean = Mat3::Zero();
+    for (std::size_t q = 0; q < 9; ++q) {
+      const Quad9Gradients dN = quad9_gradients(X, rule.xi[q], nullptr);
+      Mat3 F = Mat3::Identity(), sigma;
+      F.topLeftCorner<2, 2>() = x.transpose() * dN;
+      if (!particle_stress(materials[std::size_t(b)], F, false, 0.0, sigma)) sigma.setConstant(kNaN);
+      mean += sigma / 9.0;
+    }
+    body.values[k] = double(b);
+    for (int j = 0; j < 9; ++j) stress.values[9 * k + std::size_t(j)] = mean(j / 3, j % 3);
+    von_mises.values[k] = std::sqrt(1.5 * (mean - mean.trace() / 3.0 * Mat3::Identity()).squaredNorm());
+  }
+  for (auto* a : {&body, &stress, &von_mises}) cell_arrays.push_back(std::move(*a));
+}
+
+}  // namespace
+
 template <int D>
-void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<D>& g,
-                   const PointLocations& particle_loc, Frame& frame) {
+void snapshot_grid(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity,
+                   const Nodes<D>& g, const PointLocations& particle_loc, Frame& frame) {
   frame.step = ctx.step;
   frame.time = ctx.t;
   const std::size_t n = std::size_t(g.size());
@@ -106,6 +145,8 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
   if (!mean_stress.values.empty()) frame.point_arrays.push_back(std::move(mean_stress));
   if (g.lumped_mass.used()) frame.point_arrays.push_back(std::move(mass));  // particle Newmark: the grid carries no mass
   frame.cell_arrays = {std::move(count)};
+  if constexpr (D == 2)
+    if (activity.always_active_from != kNoIndex) add_fem_cell_stress(materials, grid, activity, g, frame.cell_arrays);
   frame.notes.clear();
   if (g.p.used()) frame.notes = {{"pressure_definition", kPressureDefinition}, {"mean_stress_definition", kMeanStressDefinition}};
 }
@@ -113,7 +154,7 @@ void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity
 
 template void snapshot_particles<2>(const StepContext&, const std::vector<BodyMaterial>&, const Points<2>&, Frame&);
 template void snapshot_particles<3>(const StepContext&, const std::vector<BodyMaterial>&, const Points<3>&, Frame&);
-template void snapshot_grid<2>(const StepContext&, const Cells&, const GridActivity&, const Nodes<2>&, const PointLocations&, Frame&);
-template void snapshot_grid<3>(const StepContext&, const Cells&, const GridActivity&, const Nodes<3>&, const PointLocations&, Frame&);
+template void snapshot_grid<2>(const StepContext&, const std::vector<BodyMaterial>&, const Cells&, const GridActivity&, const Nodes<2>&, const PointLocations&, Frame&);
+template void snapshot_grid<3>(const StepContext&, const std::vector<BodyMaterial>&, const Cells&, const GridActivity&, const Nodes<3>&, const PointLocations&, Frame&);
 
 }  // namespace loom

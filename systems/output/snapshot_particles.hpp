@@ -22,9 +22,12 @@ namespace loom {
 template <int D>
 void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Points<D>& particles, Frame& frame);
 
+// Method mpm_fem: the FEM bodies' cells follow the grid's in the same file, with cell data body (-1 on the background
+// grid's cells), stress (9 components, the mean Cauchy stress of the cell's 3 x 3 Gauss points) and von_mises
+// (NaN on the grid's cells, whose stress is the particles').
 template <int D>
-void snapshot_grid(const StepContext& ctx, const Cells& grid, const GridActivity& activity, const Nodes<D>& grid_nodes,
-                   const PointLocations& particle_loc, Frame& frame);
+void snapshot_grid(const StepContext& ctx, const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity,
+                   const Nodes<D>& grid_nodes, const PointLocations& particle_loc, Frame& frame);
 
 // Cauchy stress of a material point: sigma_dev(F) + p I for the mixed formulation (neo_hooke_split with the
 // particle's pressure), tau(b^e) / J for a material with history (be: the particle's b^e), the material's stress

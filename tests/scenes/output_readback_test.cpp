@@ -24,6 +24,7 @@
 #include "engine/methods/model/build_mesh.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "tests/scenes/scene_checks.hpp"
+#include "tests/scenes/vtu_frame.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace loom::testing {
@@ -31,23 +32,6 @@ namespace {
 
 const std::string kCook = std::string(LOOM_SOURCE_DIR) + "/scenes/cooks_membrane_linear.toml";
 const std::string kPvd = "cooks-membrane-linear.pvd";
-
-struct VtuFrame {
-  vtkSmartPointer<vtkUnstructuredGrid> grid;
-  vtkDataArray* point(const char* name) const { return grid->GetPointData()->GetArray(name); }
-  vtkDataArray* cell(const char* name) const { return grid->GetCellData()->GetArray(name); }
-};
-
-VtuFrame read_vtu(const std::string& path) {
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  EXPECT_TRUE(reader->CanReadFile(path.c_str())) << path;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  EXPECT_EQ(reader->GetErrorCode(), 0) << path;
-  VtuFrame f;
-  f.grid = reader->GetOutput();
-  return f;
-}
 
 double relative_gap(double a, double b) { return std::abs(a - b) / std::max(1.0, std::max(std::abs(a), std::abs(b))); }
 

@@ -95,4 +95,17 @@ void check_point_probes_inside(const SceneSpec& scene, const std::vector<Vec2>& 
   }
 }
 
+void check_stress_probes_found(const SceneSpec& scene, const std::vector<std::size_t>& cells_found) {
+  for (std::size_t k = 0; k < scene.probes.size(); ++k) {
+    const ProbeSpec& p = scene.probes[k];
+    if (p.kind != ProbeKind::stress || cells_found[k] > 0) continue;
+    std::ostringstream os;
+    os << p.where << ": error: probe[" << k << "].at: (" << p.at.x() << ", " << p.at.y() << ", " << p.at_z << ") lies outside "
+       << (p.body == kNoIndex ? std::string("every body") : "body \"" + scene.bodies[std::size_t(p.body)].name + "\"")
+       << " (reference coordinates; a curved 10-node cell counts by its straight corner tetrahedron); a stress probe reads "
+          "the body at that point";
+    throw InputError(os.str());
+  }
+}
+
 }  // namespace loom

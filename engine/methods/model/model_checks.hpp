@@ -23,4 +23,8 @@ void check_rigid_motions_held(const SceneSpec& scene, const Nodes<2>& nodes, con
 void check_point_probes_inside(const SceneSpec& scene, const std::vector<Vec2>& X, const std::vector<Index>& corners,
                                const std::vector<Index>& corner_body);
 
+// 3D: each stress probe must have found a tetrahedron of its body that holds its point (`cells_found[k]` of them
+// for probe k; the 2D check above runs before the plan).
+void check_stress_probes_found(const SceneSpec& scene, const std::vector<std::size_t>& cells_found);
+
 }  // namespace loom

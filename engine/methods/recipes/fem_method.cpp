@@ -42,6 +42,11 @@ FemRunT<D>::FemRunT(const SceneSpec& scene, const RunOptions& options)
     check_inlets();
   }
   probe_plan_ = plan_probes<D>(scene_, m_.nodes, m_.cells, m_.node_body);
+  if constexpr (D == 3) {
+    std::vector<std::size_t> found;
+    for (const auto& samples : probe_plan_.samples) found.push_back(samples.size());
+    check_stress_probes_found(m_.scene, found);
+  }
   build_graph();
 }
 

@@ -221,7 +221,7 @@ void MpmRunT<D>::output_node() {
   auto particles = std::make_shared<Frame>();
   auto grid = std::make_shared<Frame>();
   snapshot_particles(ctx_, m_.materials, m_.particles, *particles);
-  snapshot_grid(ctx_, m_.grid, m_.activity, m_.grid_nodes, m_.particle_loc, *grid);
+  snapshot_grid(ctx_, m_.materials, m_.grid, m_.activity, m_.grid_nodes, m_.particle_loc, *grid);
   std::ostringstream stem;
   stem << file_stem(scene_.scene.name) << "_" << std::setw(6) << std::setfill('0') << particles->step;
   const std::string dir = options_.output_directory, particle_file = stem.str() + "_particles.vtp", grid_file = stem.str() + "_grid.vtu";
