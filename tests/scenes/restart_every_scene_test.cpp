@@ -71,6 +71,7 @@ const std::map<std::string, Case>& cases() {
       {"moderate_block_pfem", {6, {}}},
       {"newtonian_duct_3d", {3, {}}},
       {"plate_with_hole", {3, {}}},
+      {"plate_with_hole_3d", {3, {}}},
       {"quarter_block_walls_3d", {3, {}}},
       {"rolling_disk_mpm", {6, {}}},
       {"rolling_disk_on_plate", {6, {}}},
