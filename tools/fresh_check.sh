@@ -20,7 +20,7 @@
 # commands pass, otherwise non-zero and names the command that failed.
 # How long (two cores): debootstrap 1-2 minutes, on the first run only (later runs unpack the cached tarball
 # in seconds); the first command, apt installs and the build of the program, about 11 minutes; the second, the test
-# programs' build and the default suite, about 23 minutes (measured at cc9411d: 10m48s and 22m37s).
+# programs' build and the default suite, about 23 minutes (measured at cc2490f: 10m56s and 22m46s).
 # Disk: ~4 GB per root (removed afterwards unless --keep), 164 MB for the cached tarball. Uses only Debian
 # packages (debootstrap, installed with apt if missing).
 set -euo pipefail

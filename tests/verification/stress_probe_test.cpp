@@ -68,17 +68,25 @@ TEST(StressProbe, ReproducesTheLinearStressOfPureBendingAtAnyPointWithQuad9) { c
 // which 10-node tetrahedra represent exactly; prescribed on the whole boundary of a distorted box, the probe's linear
 // fit of each cell's four point stresses returns sigma_xx = c y and zero shear at any point, inside a cell, on a face
 // and at a node. Every component is read.
+// The six faces of the unit cube as region boxes.
+const char* const kCubeFaces[6] = {"[[0.0, 0.0, 0.0], [0.0, 1.0, 1.0]]", "[[1.0, 0.0, 0.0], [1.0, 1.0, 1.0]]", "[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0]]",
+                                   "[[0.0, 1.0, 0.0], [1.0, 1.0, 1.0]]", "[[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]", "[[0.0, 0.0, 1.0], [1.0, 1.0, 1.0]]"};
+
+// A static linear elastic unit cube of n^3 distorted Kuhn boxes of `element` (3D), without boundaries or probes.
+void write_cube_scene(std::ostringstream& s, const char* element, int n) {
+  s.precision(17);
+  s << "[scene]\nname = \"cube\"\nmethod = \"fem\"\ndimension = 3\n[time]\ndt = 1.0\nsteps = 1\n"
+    << "[[material]]\nname = \"m\"\nmodel = \"linear_elastic\"\nE = " << kE << "\nnu = " << kNu << "\n"
+    << "[[body]]\nname = \"cube\"\nmaterial = \"m\"\nelement = \"" << element << "\"\n"
+    << "mesh = { generator = \"box\", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 1.0], divisions = [" << n << ", " << n << ", " << n
+    << "], distortion = 0.2 }\n";
+}
+
 std::string bending_3d_text() {
   std::ostringstream s;
-  s.precision(17);
-  s << "[scene]\nname = \"bending\"\nmethod = \"fem\"\ndimension = 3\n[time]\ndt = 1.0\nsteps = 1\n"
-    << "[[material]]\nname = \"m\"\nmodel = \"linear_elastic\"\nE = " << kE << "\nnu = " << kNu << "\n"
-    << "[[body]]\nname = \"cube\"\nmaterial = \"m\"\nelement = \"tet10\"\n"
-    << "mesh = { generator = \"box\", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 1.0], divisions = [2, 2, 2], distortion = 0.2 }\n";
-  const char* faces[] = {"[[0.0, 0.0, 0.0], [0.0, 1.0, 1.0]]", "[[1.0, 0.0, 0.0], [1.0, 1.0, 1.0]]", "[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0]]",
-                         "[[0.0, 1.0, 0.0], [1.0, 1.0, 1.0]]", "[[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]", "[[0.0, 0.0, 1.0], [1.0, 1.0, 1.0]]"};
+  write_cube_scene(s, "tet10", 2);
   for (int k = 0; k < 6; ++k)
-    s << "[[boundary]]\nname = \"face" << k << "\"\nregion = { box = " << faces[k] << " }\n"
+    s << "[[boundary]]\nname = \"face" << k << "\"\nregion = { box = " << kCubeFaces[k] << " }\n"
       << "displacement = { x = \"" << kC / kE << " * x * y\", y = \"-" << kC / (2 * kE) << " * (x^2 + " << kNu << " * (y^2 - z^2))\", z = \"-"
       << kNu * kC / kE << " * y * z\" }\n";
   const double points[][3] = {{0.3, 0.7, 0.4}, {0.55, 0.2, 0.9}, {0.5, 1.0 / 3, 0.0}, {0.0, 1.0, 1.0}};
@@ -113,15 +121,9 @@ TEST(StressProbe, ReadsEveryComponentOfAHomogeneousStressWithLinearTetrahedra) {
   G << 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 10.0;
   G *= 1e-3;
   std::ostringstream s;
-  s.precision(17);
-  s << "[scene]\nname = \"homogeneous\"\nmethod = \"fem\"\ndimension = 3\n[time]\ndt = 1.0\nsteps = 1\n"
-    << "[[material]]\nname = \"m\"\nmodel = \"linear_elastic\"\nE = " << kE << "\nnu = " << kNu << "\n"
-    << "[[body]]\nname = \"cube\"\nmaterial = \"m\"\nelement = \"p1\"\n"
-    << "mesh = { generator = \"box\", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 1.0], divisions = [3, 3, 3], distortion = 0.2 }\n";
-  const char* faces[] = {"[[0.0, 0.0, 0.0], [0.0, 1.0, 1.0]]", "[[1.0, 0.0, 0.0], [1.0, 1.0, 1.0]]", "[[0.0, 0.0, 0.0], [1.0, 0.0, 1.0]]",
-                         "[[0.0, 1.0, 0.0], [1.0, 1.0, 1.0]]", "[[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]", "[[0.0, 0.0, 1.0], [1.0, 1.0, 1.0]]"};
+  write_cube_scene(s, "p1", 3);
   for (int k = 0; k < 6; ++k) {
-    s << "[[boundary]]\nname = \"face" << k << "\"\nregion = { box = " << faces[k] << " }\ndisplacement = { ";
+    s << "[[boundary]]\nname = \"face" << k << "\"\nregion = { box = " << kCubeFaces[k] << " }\ndisplacement = { ";
     for (int i = 0; i < 3; ++i)
       s << "xyz"[i] << " = \"" << G(i, 0) << " * x + " << G(i, 1) << " * y + " << G(i, 2) << " * z\"" << (i < 2 ? ", " : " }\n");
   }
