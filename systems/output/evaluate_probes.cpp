@@ -72,6 +72,25 @@ double point_weight(int per_cell, int dimension, const std::array<double, 4>& l,
   return (l[std::size_t(q)] - b) / (a - b);
 }
 
+// Where a stress probe's reference point lies in cell c of block b, if it does: its barycentric coordinates in the
+// corner triangle (an inverted one holds nothing) or tetrahedron, or quad9's reference coordinates.
+std::optional<StressSample> stress_sample(const Nodes<2>& nodes, const Cells& cb, Index b, Index c, const Vec2& at) {
+  if (cb.type == CellType::quad9) {
+    if (const auto xi = quad9_sample(nodes, cb, c, at)) return StressSample{b, c, {xi->x(), xi->y(), 0.0, 0.0}};
+    return std::nullopt;
+  }
+  const Vec2 &a = nodes.X[cb.node(c, 0)], &e1 = nodes.X[cb.node(c, 1)], &e2 = nodes.X[cb.node(c, 2)];
+  if (!(signed_area(a, e1, e2) > 0.0)) return std::nullopt;
+  const auto l = barycentric(a, e1, e2, at);
+  if (l && l->minCoeff() >= -1e-9) return StressSample{b, c, {(*l)[0], (*l)[1], (*l)[2], 0.0}};
+  return std::nullopt;
+}
+std::optional<StressSample> stress_sample(const Nodes<3>& nodes, const Cells& cb, Index b, Index c, const Vec3& at) {
+  const auto l = barycentric(nodes.X[cb.node(c, 0)], nodes.X[cb.node(c, 1)], nodes.X[cb.node(c, 2)], nodes.X[cb.node(c, 3)], at);
+  if (l && l->minCoeff() >= -1e-9) return StressSample{b, c, {(*l)[0], (*l)[1], (*l)[2], (*l)[3]}};
+  return std::nullopt;
+}
+
 std::array<Vec3, 4> corners_at(const Nodes<3>& nodes, const Cells& cb, Index c) {
   return {nodes.position_n(cb.node(c, 0)), nodes.position_n(cb.node(c, 1)), nodes.position_n(cb.node(c, 2)), nodes.position_n(cb.node(c, 3))};
 }
@@ -185,32 +204,11 @@ ProbePlan plan_probes(const SceneSpec& scene, const Nodes<D>& nodes, const std::
       }
     }
     std::vector<StressSample> samples;
-    if constexpr (D == 3)
-      if (p.kind == ProbeKind::stress)
-        for (std::size_t b = 0; b < cells.size(); ++b) {
-          const Cells& cb = cells[b];
-          for (Index c = 0; c < cb.size(); ++c) {
-            if (p.body != kNoIndex && cb.body[c] != p.body) continue;
-            const auto l = barycentric(nodes.X[cb.node(c, 0)], nodes.X[cb.node(c, 1)], nodes.X[cb.node(c, 2)], nodes.X[cb.node(c, 3)], probe_point<D>(p));
-            if (l && l->minCoeff() >= -1e-9) samples.push_back({Index(b), c, {(*l)[0], (*l)[1], (*l)[2], (*l)[3]}});
-          }
-        }
-    if constexpr (D == 2)
-      if (p.kind == ProbeKind::stress)
-        for (std::size_t b = 0; b < cells.size(); ++b) {
-        const Cells& cb = cells[b];
-        for (Index c = 0; c < cb.size(); ++c) {
-          if (p.body != kNoIndex && cb.body[c] != p.body) continue;
-          if (cb.type == CellType::quad9) {
-            if (const auto xi = quad9_sample(nodes, cb, c, p.at)) samples.push_back({Index(b), c, {xi->x(), xi->y(), 0.0, 0.0}});
-            continue;
-          }
-          const Vec2 &a = nodes.X[cb.node(c, 0)], &e1 = nodes.X[cb.node(c, 1)], &e2 = nodes.X[cb.node(c, 2)];
-          if (!(signed_area(a, e1, e2) > 0.0)) continue;
-          const auto l = barycentric(a, e1, e2, p.at);
-          if (l && l->minCoeff() >= -1e-9) samples.push_back({Index(b), c, {(*l)[0], (*l)[1], (*l)[2], 0.0}});
-        }
-      }
+    if (p.kind == ProbeKind::stress)
+      for (std::size_t b = 0; b < cells.size(); ++b)
+        for (Index c = 0; c < cells[b].size(); ++c)
+          if (p.body == kNoIndex || cells[b].body[c] == p.body)
+            if (const auto s = stress_sample(nodes, cells[b], Index(b), c, probe_point<D>(p))) samples.push_back(*s);
     plan.samples.push_back(std::move(samples));
     std::array<Vec2, 2> downstream{Vec2::Zero(), Vec2::Zero()};
     if (D == 2 && p.inlet != kNoIndex) {  // the section's normal along the inflow (engine/methods/pfem/inlet_flow.hpp)
