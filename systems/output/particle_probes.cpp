@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/mesh/quad9_shape.hpp"
+#include "systems/output/coupled_cell.hpp"
 #include "systems/output/elastic_energy.hpp"
 
 namespace loom {
@@ -25,11 +26,7 @@ void add_fem_energy(const StepContext& ctx, const std::vector<BodyMaterial>& mat
     const double rho = scene.materials[std::size_t(scene.bodies[std::size_t(b)].material)].density;
     const double rho_i = scene.bodies[std::size_t(b)].unit_inertia ? 1.0 : rho;
     Quad9Coordinates x, X;
-    for (int a = 0; a < 9; ++a) {
-      const Index i = g.grid.node(c, a);
-      x.row(a) = (g.nodes.X[i] + g.nodes.u[i]).transpose();
-      X.row(a) = (g.nodes.X[i] - g.nodes.u_n[i]).transpose();
-    }
+    coupled_cell_coordinates(g.grid, g.nodes, c, x, X);
     for (std::size_t q = 0; q < 9; ++q) {
       double det = 0.0;
       const Quad9Gradients dN = quad9_gradients(X, rule.xi[q], &det);

@@ -4,6 +4,7 @@
 
 #include "engine/core/parallel.hpp"
 #include "engine/mesh/quad9_shape.hpp"
+#include "systems/output/coupled_cell.hpp"
 
 namespace loom {
 
@@ -69,8 +70,8 @@ void snapshot_particles(const StepContext& ctx, const std::vector<BodyMaterial>&
 
 namespace {
 
-// Method mpm_fem: the FEM cells' Cauchy stress, the mean over their Gauss points of F = dx/dX^ on the undeformed cell
-// X^ = X - u_n (as their energy in particle_probes.cpp), appended to the cell data of the cells written.
+// Method mpm_fem: the FEM cells' Cauchy stress, the mean over their Gauss points of F = dx/dX^ (coupled_cell.hpp),
+// appended to the cell data of the cells written.
 void add_fem_cell_stress(const std::vector<BodyMaterial>& materials, const Cells& grid, const GridActivity& activity, const Nodes<2>& g,
                          std::vector<FrameArray>& cell_arrays) {
   const std::size_t n = activity.active_cells.size();
@@ -83,11 +84,7 @@ void add_fem_cell_stress(const std::vector<BodyMaterial>& materials, const Cells
     if (c < activity.always_active_from) continue;
     const Index b = grid.body[c];
     Quad9Coordinates x, X;
-    for (int a = 0; a < 9; ++a) {
-      const Index i = grid.node(c, a);
-      x.row(a) = (g.X[i] + g.u[i]).transpose();
-      X.row(a) = (g.X[i] - g.u_n[i]).transpose();
-    }
+    coupled_cell_coordinates(grid, g, c, x, X);
     Mat3 mean = Mat3::Zero();
     for (std::size_t q = 0; q < 9; ++q) {
       const Quad9Gradients dN = quad9_gradients(X, rule.xi[q], nullptr);
